@@ -1,0 +1,26 @@
+// The application's whole configuration: one plain struct per section, each declared (key, unit,
+// range, meaning) by the describe() beside its own struct, validated at start-up.
+#pragma once
+
+#include <string>
+
+#include "hal/marker_model.hpp"
+#include "hal/parameters.hpp"
+
+namespace rovctl::app {
+
+struct AppConfig {
+  std::string config_file;       // where it was loaded from (empty: built-in defaults)
+  std::string calibration_file;  // OpenCV stereo calibration YAML (K1, D1, K2, D2, R, T, size)
+  hal::MarkerModel marker = hal::MarkerModel::standard();
+};
+
+void describe(hal::ParamVisitor& v, AppConfig& config);
+
+// Loads and validates; throws ConfigError naming file, line and key.
+AppConfig load_app_config(const std::string& file);
+
+// The config shipped with rovctl (deploy/config/sim.yaml), installed or in the source tree.
+std::string default_config_path();
+
+}  // namespace rovctl::app

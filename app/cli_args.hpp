@@ -1,0 +1,27 @@
+// Command-line options of one rovctl sub-command: `--name value` options and `--flag` flags.
+#pragma once
+
+#include <map>
+#include <set>
+#include <string>
+#include <vector>
+
+namespace rovctl::app {
+
+class CliArgs {
+ public:
+  // Throws UsageError naming the command and the offending word.
+  static CliArgs parse(const std::string& command, const std::vector<std::string>& words,
+                       const std::set<std::string>& options, const std::set<std::string>& flags);
+
+  bool has(const std::string& name) const;
+  std::string get(const std::string& name, const std::string& fallback = "") const;
+  long get_int(const std::string& name, long fallback, long min, long max) const;
+  double get_double(const std::string& name, double fallback, double min, double max) const;
+
+ private:
+  std::string command_;
+  std::map<std::string, std::string> values_;
+};
+
+}  // namespace rovctl::app

@@ -1,0 +1,14 @@
+// `rovctl check`: placeholder until its issue lands (see commands.hpp).
+#include <iostream>
+
+#include "app/commands.hpp"
+#include "app/errors.hpp"
+
+namespace rovctl::app {
+
+int command_check(const Words&) {
+  std::cerr << "rovctl check: not implemented yet\n";
+  return kExitRuntimeFailure;
+}
+
+}  // namespace rovctl::app

@@ -1,0 +1,22 @@
+// The rovctl sub-commands. Each takes the words after its name and returns the exit code;
+// usage and config problems are thrown as UsageError / ConfigError (exit 2).
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace rovctl::app {
+
+using Words = std::vector<std::string>;
+
+int command_estimate(const Words& words);   // one stereo pair -> marker pose
+int command_bench(const Words& words);      // estimator throughput and convergence
+int command_sim(const Words& words);        // closed-loop docking on the mock HAL
+int command_run(const Words& words);        // the vehicle, on the backends the config names
+int command_check(const Words& words);      // pre-flight checks
+int command_thrusters(const Words& words);  // motor test
+int command_record(const Words& words);     // save timestamped stereo pairs
+int command_study(const Words& words);      // the paper's GA-parameter study
+int command_params(const Words& words);     // every declared parameter, as a markdown table
+
+}  // namespace rovctl::app

@@ -1,0 +1,142 @@
+// OpenCV stereo calibration YAML <-> hal::StereoRig. Accepts image size as `image_size` ([w, h])
+// or `image_width`/`image_height`, and D with 4, 5 or more coefficients (extra ones must be 0).
+#include "estimator/stereo_calibration.hpp"
+
+#include <cmath>
+#include <filesystem>
+#include <opencv2/core.hpp>
+#include <stdexcept>
+
+namespace rovctl::estimator {
+namespace {
+
+[[noreturn]] void fail(const std::string& file, const std::string& what) {
+  throw std::invalid_argument(file + ": " + what);
+}
+
+cv::Mat read_matrix(const cv::FileStorage& fs, const std::string& file, const std::string& key,
+                    int rows, int cols_min, int cols_max) {
+  const cv::FileNode n = fs[key];
+  if (n.empty()) fail(file, "missing key '" + key + "'");
+  cv::Mat m;
+  try {
+    n >> m;
+  } catch (const cv::Exception&) {
+    fail(file, "key '" + key + "' is not an OpenCV matrix");
+  }
+  if (m.empty()) fail(file, "key '" + key + "' is not an OpenCV matrix");
+  m.convertTo(m, CV_64F);
+  if (m.rows == 1 && rows != 1 && m.cols == rows) m = m.t();  // a row vector where a column is due
+  if (rows == 1 && m.cols == 1) m = m.t();                     // distortion given as a column
+  if (m.rows != rows || m.cols < cols_min || m.cols > cols_max) {
+    fail(file, "key '" + key + "' has shape " + std::to_string(m.rows) + "x" +
+                   std::to_string(m.cols) + ", expected " + std::to_string(rows) + "x" +
+                   std::to_string(cols_min) +
+                   (cols_max != cols_min ? ".." + std::to_string(cols_max) : ""));
+  }
+  for (int r = 0; r < m.rows; ++r) {
+    for (int c = 0; c < m.cols; ++c) {
+      if (!std::isfinite(m.at<double>(r, c))) fail(file, "key '" + key + "' has a non-finite value");
+    }
+  }
+  return m;
+}
+
+hal::CameraModel camera_from(const std::string& file, const cv::Mat& K, const cv::Mat& D,
+                             const std::string& kname, int width, int height) {
+  hal::CameraModel cam;
+  cam.fx_px = K.at<double>(0, 0);
+  cam.fy_px = K.at<double>(1, 1);
+  cam.cx_px = K.at<double>(0, 2);
+  cam.cy_px = K.at<double>(1, 2);
+  if (!(cam.fx_px > 0 && cam.fy_px > 0)) fail(file, "key '" + kname + "': focal lengths must be > 0");
+  if (K.at<double>(2, 2) != 1.0) fail(file, "key '" + kname + "': K(2,2) must be 1");
+  const double* d = D.ptr<double>(0);
+  cam.k1 = d[0];
+  cam.k2 = d[1];
+  cam.p1 = d[2];
+  cam.p2 = d[3];
+  cam.k3 = D.cols > 4 ? d[4] : 0.0;
+  for (int i = 5; i < D.cols; ++i) {
+    if (d[i] != 0.0) fail(file, "distortion coefficients beyond k3 (rational/thin prism) are not supported");
+  }
+  cam.width_px = width;
+  cam.height_px = height;
+  return cam;
+}
+
+}  // namespace
+
+hal::StereoRig load_stereo_calibration(const std::string& file) {
+  if (!std::filesystem::is_regular_file(file)) fail(file, "cannot read calibration file (no such file)");
+  cv::FileStorage fs;
+  try {
+    if (!fs.open(file, cv::FileStorage::READ)) fail(file, "cannot open calibration file");
+  } catch (const cv::Exception& e) {
+    fail(file, std::string("malformed calibration YAML: ") + e.what());
+  }
+  int width = 0, height = 0;
+  if (!fs["image_size"].empty()) {
+    cv::FileNode s = fs["image_size"];
+    if (!s.isSeq() || s.size() != 2) fail(file, "key 'image_size' must be [width, height]");
+    width = static_cast<int>(s[0]);
+    height = static_cast<int>(s[1]);
+  } else if (!fs["image_width"].empty() && !fs["image_height"].empty()) {
+    width = static_cast<int>(fs["image_width"]);
+    height = static_cast<int>(fs["image_height"]);
+  } else {
+    fail(file, "missing key 'image_size' (or image_width/image_height)");
+  }
+  if (width < 16 || height < 16 || width > 10000 || height > 10000) {
+    fail(file, "key 'image_size': implausible " + std::to_string(width) + "x" + std::to_string(height));
+  }
+  const cv::Mat K1 = read_matrix(fs, file, "K1", 3, 3, 3);
+  const cv::Mat D1 = read_matrix(fs, file, "D1", 1, 4, 14);
+  const cv::Mat K2 = read_matrix(fs, file, "K2", 3, 3, 3);
+  const cv::Mat D2 = read_matrix(fs, file, "D2", 1, 4, 14);
+  const cv::Mat R = read_matrix(fs, file, "R", 3, 3, 3);
+  const cv::Mat T = read_matrix(fs, file, "T", 3, 1, 1);
+
+  hal::StereoRig rig;
+  rig.left = camera_from(file, K1, D1, "K1", width, height);
+  rig.right = camera_from(file, K2, D2, "K2", width, height);
+  Eigen::Matrix3d Rm;
+  for (int r = 0; r < 3; ++r) {
+    for (int c = 0; c < 3; ++c) Rm(r, c) = R.at<double>(r, c);
+  }
+  if ((Rm * Rm.transpose() - Eigen::Matrix3d::Identity()).norm() > 1e-3 || Rm.determinant() < 0.99) {
+    fail(file, "key 'R' is not a rotation matrix");
+  }
+  rig.T_cr_cl.linear() = Eigen::Quaterniond(Rm).normalized().toRotationMatrix();
+  rig.T_cr_cl.translation() = Eigen::Vector3d(T.at<double>(0), T.at<double>(1), T.at<double>(2));
+  if (rig.baseline_m() < 1e-3 || rig.baseline_m() > 5.0) {
+    fail(file, "key 'T': baseline " + std::to_string(rig.baseline_m()) +
+                   " m is implausible (units must be metres)");
+  }
+  return rig;
+}
+
+void save_stereo_calibration(const std::string& file, const hal::StereoRig& rig) {
+  auto K = [](const hal::CameraModel& c) {
+    return (cv::Mat_<double>(3, 3) << c.fx_px, 0, c.cx_px, 0, c.fy_px, c.cy_px, 0, 0, 1);
+  };
+  auto D = [](const hal::CameraModel& c) {
+    return (cv::Mat_<double>(1, 5) << c.k1, c.k2, c.p1, c.p2, c.k3);
+  };
+  cv::Mat R(3, 3, CV_64F), T(3, 1, CV_64F);
+  for (int r = 0; r < 3; ++r) {
+    for (int c = 0; c < 3; ++c) R.at<double>(r, c) = rig.T_cr_cl.linear()(r, c);
+    T.at<double>(r) = rig.T_cr_cl.translation()(r);
+  }
+  const std::string tmp = file + ".tmp";
+  {
+    cv::FileStorage fs(tmp, cv::FileStorage::WRITE);
+    if (!fs.isOpened()) throw std::runtime_error(file + ": cannot write calibration file");
+    fs << "image_size" << std::vector<int>{rig.left.width_px, rig.left.height_px};
+    fs << "K1" << K(rig.left) << "D1" << D(rig.left) << "K2" << K(rig.right) << "D2" << D(rig.right);
+    fs << "R" << R << "T" << T;
+  }
+  std::filesystem::rename(tmp, file);  // never a half-written calibration
+}
+
+}  // namespace rovctl::estimator
