@@ -13,6 +13,10 @@ void describe(hal::ParamVisitor& v, AppConfig& c) {
          "OpenCV stereo calibration YAML (K1, D1, K2, D2, R, T, image size)", true);
   v.section("marker", "the docking marker: three coloured spheres",
             [&c](hal::ParamVisitor& s) { hal::describe(s, c.marker); });
+  v.section("vehicle", "vehicle geometry: camera mount, docking probe, thrusters",
+            [&c](hal::ParamVisitor& s) { hal::describe(s, c.vehicle); });
+  v.section("station", "docking station: charging socket relative to the marker",
+            [&c](hal::ParamVisitor& s) { hal::describe(s, c.station); });
 }
 
 AppConfig load_app_config(const std::string& file) {

@@ -4,8 +4,10 @@
 
 #include <string>
 
+#include "hal/docking_station.hpp"
 #include "hal/marker_model.hpp"
 #include "hal/parameters.hpp"
+#include "hal/vehicle_geometry.hpp"
 
 namespace rovctl::app {
 
@@ -13,6 +15,8 @@ struct AppConfig {
   std::string config_file;       // where it was loaded from (empty: built-in defaults)
   std::string calibration_file;  // OpenCV stereo calibration YAML (K1, D1, K2, D2, R, T, size)
   hal::MarkerModel marker = hal::MarkerModel::standard();
+  hal::VehicleGeometry vehicle;
+  hal::DockingStation station;
 };
 
 void describe(hal::ParamVisitor& v, AppConfig& config);

@@ -32,8 +32,7 @@ CliArgs CliArgs::parse(const std::string& command, const std::vector<std::string
       }
       args.values_[word] = value;
     } else {
-      throw UsageError("rovctl " + command + ": unknown option '" + word +
-                       "' (see rovctl help)");
+      throw UsageError("rovctl " + command + ": unknown option '" + word + "' (see rovctl help)");
     }
   }
   return args;
@@ -59,8 +58,7 @@ long CliArgs::get_int(const std::string& name, long fallback, long min, long max
   return v;
 }
 
-double CliArgs::get_double(const std::string& name, double fallback, double min,
-                           double max) const {
+double CliArgs::get_double(const std::string& name, double fallback, double min, double max) const {
   if (!has(name)) return fallback;
   const std::string text = get(name);
   char* end = nullptr;

@@ -63,8 +63,9 @@ class YamlLoader final : public hal::ParamVisitor {
       try {
         value[i] = n[i].as<double>();
       } catch (const YAML::Exception&) {
-        fail(n, key, "expected a list of 3 numbers, element " + std::to_string(i) + " is '" +
-                         n[i].Scalar() + "'");
+        fail(n, key,
+             "expected a list of 3 numbers, element " + std::to_string(i) + " is '" +
+                 n[i].Scalar() + "'");
       }
       check_range(n, key, value[i], meta);
     }
@@ -93,7 +94,8 @@ class YamlLoader final : public hal::ParamVisitor {
     const std::string v = scalar<std::string>(n, key, "a file path");
     if (v.empty()) fail(n, key, "empty path");
     const std::filesystem::path p(v);
-    value = p.is_absolute() || base_dir_.empty() ? v : (std::filesystem::path(base_dir_) / p).string();
+    value =
+        p.is_absolute() || base_dir_.empty() ? v : (std::filesystem::path(base_dir_) / p).string();
   }
 
   void list(std::string_view key, std::string_view, std::size_t min_count, std::size_t max_count,
@@ -103,8 +105,9 @@ class YamlLoader final : public hal::ParamVisitor {
     if (!present(n, key, false)) return;
     if (!n.IsSequence()) fail(n, key, "expected a list");
     if (n.size() < min_count || n.size() > max_count) {
-      fail(n, key, "expected " + std::to_string(min_count) + " to " + std::to_string(max_count) +
-                       " elements, got " + std::to_string(n.size()));
+      fail(n, key,
+           "expected " + std::to_string(min_count) + " to " + std::to_string(max_count) +
+               " elements, got " + std::to_string(n.size()));
     }
     resize(n.size());
     for (std::size_t i = 0; i < n.size(); ++i) {
@@ -160,8 +163,9 @@ class YamlLoader final : public hal::ParamVisitor {
   void check_range(const YAML::Node& n, std::string_view key, T v, const hal::ParamMeta& m) const {
     const double d = static_cast<double>(v);
     if (!std::isfinite(d) || d < m.min || d > m.max) {
-      fail(n, key, format_number(d) + " is out of range [" + format_number(m.min) + ", " +
-                       format_number(m.max) + "] " + std::string(m.unit));
+      fail(n, key,
+           format_number(d) + " is out of range [" + format_number(m.min) + ", " +
+               format_number(m.max) + "] " + std::string(m.unit));
     }
   }
 
@@ -210,12 +214,13 @@ class DocVisitor final : public hal::ParamVisitor {
     row(key, "integer", m, std::to_string(value));
   }
   void param(std::string_view key, bool& value, std::string_view doc) override {
-    out_ << "| `" << path_of(key) << "` | bool | | | " << (value ? "true" : "false") << " | "
-         << doc << " |\n";
+    out_ << "| `" << path_of(key) << "` | bool | | | " << (value ? "true" : "false") << " | " << doc
+         << " |\n";
   }
   void param(std::string_view key, Eigen::Vector3d& v, const hal::ParamMeta& m) override {
     row(key, "[x, y, z]", m,
-        "[" + format_number(v.x()) + ", " + format_number(v.y()) + ", " + format_number(v.z()) + "]");
+        "[" + format_number(v.x()) + ", " + format_number(v.y()) + ", " + format_number(v.z()) +
+            "]");
   }
   void param(std::string_view key, std::string& value, std::string_view doc,
              const std::vector<std::string>& choices, bool required) override {
@@ -226,8 +231,8 @@ class DocVisitor final : public hal::ParamVisitor {
   }
   void path(std::string_view key, std::string& value, std::string_view doc,
             bool required) override {
-    out_ << "| `" << path_of(key) << "` | path | | | " << (required ? "(required)" : value)
-         << " | " << doc << " |\n";
+    out_ << "| `" << path_of(key) << "` | path | | | " << (required ? "(required)" : value) << " | "
+         << doc << " |\n";
   }
   void list(std::string_view key, std::string_view doc, std::size_t min_count,
             std::size_t max_count, std::size_t current_count,
@@ -242,7 +247,8 @@ class DocVisitor final : public hal::ParamVisitor {
   }
 
  private:
-  void row(std::string_view key, const char* type, const hal::ParamMeta& m, const std::string& def) {
+  void row(std::string_view key, const char* type, const hal::ParamMeta& m,
+           const std::string& def) {
     out_ << "| `" << path_of(key) << "` | " << type << " | " << m.unit << " | "
          << format_number(m.min) << " .. " << format_number(m.max) << " | "
          << (m.required ? "(required)" : def) << " | " << m.doc << " |\n";
@@ -265,7 +271,8 @@ void load_yaml_file(const std::string& file,
   try {
     root = YAML::LoadFile(file);
   } catch (const YAML::ParserException& e) {
-    throw ConfigError(file + ":" + std::to_string(e.mark.line + 1) + ": YAML syntax error: " + e.msg);
+    throw ConfigError(file + ":" + std::to_string(e.mark.line + 1) +
+                      ": YAML syntax error: " + e.msg);
   } catch (const YAML::Exception& e) {
     throw ConfigError(file + ": cannot read config file: " + e.msg);
   }
@@ -279,7 +286,8 @@ void load_yaml_text(const std::string& text, const std::string& name, const std:
   try {
     root = YAML::Load(text);
   } catch (const YAML::ParserException& e) {
-    throw ConfigError(name + ":" + std::to_string(e.mark.line + 1) + ": YAML syntax error: " + e.msg);
+    throw ConfigError(name + ":" + std::to_string(e.mark.line + 1) +
+                      ": YAML syntax error: " + e.msg);
   }
   load_node(root, name, base_dir, describe);
 }

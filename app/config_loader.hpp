@@ -10,7 +10,8 @@
 namespace rovctl::app {
 
 // Parses `file` and visits `describe` over its top-level mapping. Throws ConfigError.
-void load_yaml_file(const std::string& file, const std::function<void(hal::ParamVisitor&)>& describe);
+void load_yaml_file(const std::string& file,
+                    const std::function<void(hal::ParamVisitor&)>& describe);
 
 // The same over YAML text; relative paths are resolved against `base_dir`. For tests.
 void load_yaml_text(const std::string& text, const std::string& name, const std::string& base_dir,

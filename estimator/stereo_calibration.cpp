@@ -27,7 +27,7 @@ cv::Mat read_matrix(const cv::FileStorage& fs, const std::string& file, const st
   if (m.empty()) fail(file, "key '" + key + "' is not an OpenCV matrix");
   m.convertTo(m, CV_64F);
   if (m.rows == 1 && rows != 1 && m.cols == rows) m = m.t();  // a row vector where a column is due
-  if (rows == 1 && m.cols == 1) m = m.t();                     // distortion given as a column
+  if (rows == 1 && m.cols == 1) m = m.t();                    // distortion given as a column
   if (m.rows != rows || m.cols < cols_min || m.cols > cols_max) {
     fail(file, "key '" + key + "' has shape " + std::to_string(m.rows) + "x" +
                    std::to_string(m.cols) + ", expected " + std::to_string(rows) + "x" +
@@ -36,7 +36,8 @@ cv::Mat read_matrix(const cv::FileStorage& fs, const std::string& file, const st
   }
   for (int r = 0; r < m.rows; ++r) {
     for (int c = 0; c < m.cols; ++c) {
-      if (!std::isfinite(m.at<double>(r, c))) fail(file, "key '" + key + "' has a non-finite value");
+      if (!std::isfinite(m.at<double>(r, c)))
+        fail(file, "key '" + key + "' has a non-finite value");
     }
   }
   return m;
@@ -49,7 +50,8 @@ hal::CameraModel camera_from(const std::string& file, const cv::Mat& K, const cv
   cam.fy_px = K.at<double>(1, 1);
   cam.cx_px = K.at<double>(0, 2);
   cam.cy_px = K.at<double>(1, 2);
-  if (!(cam.fx_px > 0 && cam.fy_px > 0)) fail(file, "key '" + kname + "': focal lengths must be > 0");
+  if (!(cam.fx_px > 0 && cam.fy_px > 0))
+    fail(file, "key '" + kname + "': focal lengths must be > 0");
   if (K.at<double>(2, 2) != 1.0) fail(file, "key '" + kname + "': K(2,2) must be 1");
   const double* d = D.ptr<double>(0);
   cam.k1 = d[0];
@@ -58,7 +60,8 @@ hal::CameraModel camera_from(const std::string& file, const cv::Mat& K, const cv
   cam.p2 = d[3];
   cam.k3 = D.cols > 4 ? d[4] : 0.0;
   for (int i = 5; i < D.cols; ++i) {
-    if (d[i] != 0.0) fail(file, "distortion coefficients beyond k3 (rational/thin prism) are not supported");
+    if (d[i] != 0.0)
+      fail(file, "distortion coefficients beyond k3 (rational/thin prism) are not supported");
   }
   cam.width_px = width;
   cam.height_px = height;
@@ -68,7 +71,8 @@ hal::CameraModel camera_from(const std::string& file, const cv::Mat& K, const cv
 }  // namespace
 
 hal::StereoRig load_stereo_calibration(const std::string& file) {
-  if (!std::filesystem::is_regular_file(file)) fail(file, "cannot read calibration file (no such file)");
+  if (!std::filesystem::is_regular_file(file))
+    fail(file, "cannot read calibration file (no such file)");
   cv::FileStorage fs;
   try {
     if (!fs.open(file, cv::FileStorage::READ)) fail(file, "cannot open calibration file");
@@ -88,7 +92,8 @@ hal::StereoRig load_stereo_calibration(const std::string& file) {
     fail(file, "missing key 'image_size' (or image_width/image_height)");
   }
   if (width < 16 || height < 16 || width > 10000 || height > 10000) {
-    fail(file, "key 'image_size': implausible " + std::to_string(width) + "x" + std::to_string(height));
+    fail(file,
+         "key 'image_size': implausible " + std::to_string(width) + "x" + std::to_string(height));
   }
   const cv::Mat K1 = read_matrix(fs, file, "K1", 3, 3, 3);
   const cv::Mat D1 = read_matrix(fs, file, "D1", 1, 4, 14);
@@ -104,7 +109,8 @@ hal::StereoRig load_stereo_calibration(const std::string& file) {
   for (int r = 0; r < 3; ++r) {
     for (int c = 0; c < 3; ++c) Rm(r, c) = R.at<double>(r, c);
   }
-  if ((Rm * Rm.transpose() - Eigen::Matrix3d::Identity()).norm() > 1e-3 || Rm.determinant() < 0.99) {
+  if ((Rm * Rm.transpose() - Eigen::Matrix3d::Identity()).norm() > 1e-3 ||
+      Rm.determinant() < 0.99) {
     fail(file, "key 'R' is not a rotation matrix");
   }
   rig.T_cr_cl.linear() = Eigen::Quaterniond(Rm).normalized().toRotationMatrix();
@@ -133,7 +139,8 @@ void save_stereo_calibration(const std::string& file, const hal::StereoRig& rig)
     cv::FileStorage fs(tmp, cv::FileStorage::WRITE);
     if (!fs.isOpened()) throw std::runtime_error(file + ": cannot write calibration file");
     fs << "image_size" << std::vector<int>{rig.left.width_px, rig.left.height_px};
-    fs << "K1" << K(rig.left) << "D1" << D(rig.left) << "K2" << K(rig.right) << "D2" << D(rig.right);
+    fs << "K1" << K(rig.left) << "D1" << D(rig.left) << "K2" << K(rig.right) << "D2"
+       << D(rig.right);
     fs << "R" << R << "T" << T;
   }
   std::filesystem::rename(tmp, file);  // never a half-written calibration

@@ -48,9 +48,8 @@ class ParamVisitor {
 
 // Declares a list of structs, each described by `describe(visitor, element)`.
 template <class T, class Describe>
-void param_list(ParamVisitor& v, std::string_view key, std::string_view doc,
-                std::vector<T>& items, std::size_t min_count, std::size_t max_count,
-                Describe describe) {
+void param_list(ParamVisitor& v, std::string_view key, std::string_view doc, std::vector<T>& items,
+                std::size_t min_count, std::size_t max_count, Describe describe) {
   v.list(
       key, doc, min_count, max_count, items.size(), [&items](std::size_t n) { items.resize(n); },
       [&items, describe](ParamVisitor& inner, std::size_t i) { describe(inner, items[i]); });

@@ -6,19 +6,26 @@ namespace rovctl::hal {
 
 const char* to_string(GrabStatus s) {
   switch (s) {
-    case GrabStatus::ok: return "ok";
-    case GrabStatus::timeout: return "timeout";
-    case GrabStatus::device_lost: return "device lost";
-    case GrabStatus::end_of_stream: return "end of stream";
+    case GrabStatus::ok:
+      return "ok";
+    case GrabStatus::timeout:
+      return "timeout";
+    case GrabStatus::device_lost:
+      return "device lost";
+    case GrabStatus::end_of_stream:
+      return "end of stream";
   }
   return "?";
 }
 
 const char* to_string(BusStatus s) {
   switch (s) {
-    case BusStatus::ok: return "ok";
-    case BusStatus::degraded: return "degraded";
-    case BusStatus::fault: return "fault";
+    case BusStatus::ok:
+      return "ok";
+    case BusStatus::degraded:
+      return "degraded";
+    case BusStatus::fault:
+      return "fault";
   }
   return "?";
 }

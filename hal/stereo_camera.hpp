@@ -9,9 +9,9 @@
 namespace rovctl::hal {
 
 struct StereoFrame {
-  cv::Mat left_bgr;   // CV_8UC3, reused between grabs: backends write in place
-  cv::Mat right_bgr;  // CV_8UC3
-  std::chrono::nanoseconds left_stamp{0};   // capture time, on the Clock the application runs on
+  cv::Mat left_bgr;                        // CV_8UC3, reused between grabs: backends write in place
+  cv::Mat right_bgr;                       // CV_8UC3
+  std::chrono::nanoseconds left_stamp{0};  // capture time, on the Clock the application runs on
   std::chrono::nanoseconds right_stamp{0};
   std::uint64_t sequence = 0;
 };

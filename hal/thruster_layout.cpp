@@ -48,19 +48,19 @@ Eigen::Matrix<double, 6, Eigen::Dynamic> ThrusterLayout::configuration_matrix() 
 }
 
 void describe(ParamVisitor& v, ThrusterLayout& layout) {
-  param_list(v, "thrusters", "the vehicle's thrusters (default: BlueROV2 Heavy)", layout.thrusters,
-             1, 8, [](ParamVisitor& e, Thruster& t) {
-               e.param("name", t.name, "thruster name (for logs and the motor test)", {}, true);
-               e.param("position_m", t.position_body_m,
-                       {"m", -5.0, 5.0, "thruster position in the body frame", true});
-               e.param("direction", t.direction_body,
-                       {"-", -1.0, 1.0, "thrust axis for a positive command, body frame", true});
-               e.param("max_forward_n", t.max_forward_n,
-                       {"N", 0.1, 1000.0, "thrust at command +1"});
-               e.param("max_reverse_n", t.max_reverse_n,
-                       {"N", 0.1, 1000.0, "thrust magnitude at command -1"});
-               e.param("channel", t.channel, {"-", 0, 7, "index on the thruster bus", true});
-             });
+  param_list(
+      v, "thrusters", "the vehicle's thrusters (default: BlueROV2 Heavy)", layout.thrusters, 1, 8,
+      [](ParamVisitor& e, Thruster& t) {
+        e.param("name", t.name, "thruster name (for logs and the motor test)", {}, true);
+        e.param("position_m", t.position_body_m,
+                {"m", -5.0, 5.0, "thruster position in the body frame", true});
+        e.param("direction", t.direction_body,
+                {"-", -1.0, 1.0, "thrust axis for a positive command, body frame", true});
+        e.param("max_forward_n", t.max_forward_n, {"N", 0.1, 1000.0, "thrust at command +1"});
+        e.param("max_reverse_n", t.max_reverse_n,
+                {"N", 0.1, 1000.0, "thrust magnitude at command -1"});
+        e.param("channel", t.channel, {"-", 0, 7, "index on the thruster bus", true});
+      });
 }
 
 }  // namespace rovctl::hal

@@ -14,9 +14,9 @@ struct Thruster {
   std::string name;
   Eigen::Vector3d position_body_m = Eigen::Vector3d::Zero();  // body: x fwd, y stbd, z down
   Eigen::Vector3d direction_body = Eigen::Vector3d::UnitX();  // unit thrust axis for a + command
-  double max_forward_n = 51.5;  // thrust at command +1
-  double max_reverse_n = 40.2;  // thrust magnitude at command -1
-  int channel = 0;              // index on the thruster bus (Modbus register, ESC index)
+  double max_forward_n = 51.5;                                // thrust at command +1
+  double max_reverse_n = 40.2;                                // thrust magnitude at command -1
+  int channel = 0;  // index on the thruster bus (Modbus register, ESC index)
 };
 
 struct ThrusterLayout {

@@ -55,10 +55,11 @@ TEST(ConfigLoader, WrongTypeAndRange) {
   EXPECT_EQ(error_of("calibration: c.yaml\nmarker:\n  spheres:\n    - {name: red, centre_m: [0, 0, "
                      "0], radius_m: 7}\n"),
             "test.yaml:4: marker.spheres[0].radius_m: 7 is out of range [0.002, 0.5] m");
-  EXPECT_NE(error_of("calibration: c.yaml\nmarker:\n  spheres:\n    - {name: pink, centre_m: [0, 0, "
-                     "0]}\n")
-                .find("'pink' is not one of: red, green, blue"),
-            std::string::npos);
+  EXPECT_NE(
+      error_of("calibration: c.yaml\nmarker:\n  spheres:\n    - {name: pink, centre_m: [0, 0, "
+               "0]}\n")
+          .find("'pink' is not one of: red, green, blue"),
+      std::string::npos);
 }
 
 TEST(ConfigLoader, SyntaxErrorNamesLine) {
