@@ -13,6 +13,9 @@ struct SensorReadings {
   bool attitude_valid = false;
   Eigen::Quaterniond q_world_body = Eigen::Quaterniond::Identity();  // world = NED
   Eigen::Vector3d omega_body_radps = Eigen::Vector3d::Zero();
+  // Charging contact with the docking station (e.g. the charger's current sense).
+  bool dock_contact_valid = false;
+  bool dock_contact = false;
 };
 
 class Sensors {
