@@ -15,8 +15,24 @@ void describe(hal::ParamVisitor& v, AppConfig& c) {
             [&c](hal::ParamVisitor& s) { hal::describe(s, c.marker); });
   v.section("vehicle", "vehicle geometry: camera mount, docking probe, thrusters",
             [&c](hal::ParamVisitor& s) { hal::describe(s, c.vehicle); });
+  v.section("estimator", "stereo pose estimator: RM-GA, fitness samples, search volume, mode",
+            [&c](hal::ParamVisitor& s) { estimator::describe(s, c.estimator); });
   v.section("station", "docking station: charging socket relative to the marker",
             [&c](hal::ParamVisitor& s) { hal::describe(s, c.station); });
+  v.section("camera", "stereo camera: mock (simulated), two V4L2 cameras, or a recorded dive",
+            [&c](hal::ParamVisitor& s) { drivers::describe(s, c.camera); });
+  v.section("thruster_bus", "thruster bus: mock, Modbus thruster controller or DroneCAN ESCs",
+            [&c](hal::ParamVisitor& s) { drivers::describe(s, c.thruster_bus); });
+  v.section("control", "visual servo, thruster allocation and failsafes",
+            [&c](hal::ParamVisitor& s) { control::describe(s, c.control); });
+  v.section("mission", "docking mission: thresholds, timeouts and retries",
+            [&c](hal::ParamVisitor& s) { control::describe(s, c.mission); });
+  v.section("scheduler", "the cyclic executive: period, real-time priority, stage budgets",
+            [&c](hal::ParamVisitor& s) { describe(s, c.scheduler); });
+  v.section("telemetry", "per-tick telemetry ring and its CSV writer",
+            [&c](hal::ParamVisitor& s) { describe(s, c.telemetry); });
+  v.section("sim", "simulated world and mock HAL: dynamics, current, station, cameras, trials",
+            [&c](hal::ParamVisitor& s) { hal::mock::describe(s, c.sim); });
 }
 
 AppConfig load_app_config(const std::string& file) {

@@ -4,8 +4,15 @@
 
 #include <string>
 
+#include "app/cyclic_scheduler.hpp"
+#include "app/telemetry.hpp"
+#include "control/control_params.hpp"
+#include "drivers/camera_params.hpp"
+#include "drivers/thruster_bus_params.hpp"
+#include "estimator/estimator_params.hpp"
 #include "hal/docking_station.hpp"
 #include "hal/marker_model.hpp"
+#include "hal/mock/sim_params.hpp"
 #include "hal/parameters.hpp"
 #include "hal/vehicle_geometry.hpp"
 
@@ -17,6 +24,14 @@ struct AppConfig {
   hal::MarkerModel marker = hal::MarkerModel::standard();
   hal::VehicleGeometry vehicle;
   hal::DockingStation station;
+  drivers::CameraParams camera;
+  drivers::ThrusterBusParams thruster_bus;
+  estimator::EstimatorParams estimator;
+  control::ControlParams control;
+  control::MissionParams mission;
+  SchedulerParams scheduler;
+  TelemetryParams telemetry;
+  hal::mock::SimParams sim;
 };
 
 void describe(hal::ParamVisitor& v, AppConfig& config);

@@ -123,10 +123,10 @@ hal::StereoRig load_stereo_calibration(const std::string& file) {
 }
 
 void save_stereo_calibration(const std::string& file, const hal::StereoRig& rig) {
-  auto K = [](const hal::CameraModel& c) {
+  auto K = [](const hal::CameraModel& c) -> cv::Mat {
     return (cv::Mat_<double>(3, 3) << c.fx_px, 0, c.cx_px, 0, c.fy_px, c.cy_px, 0, 0, 1);
   };
-  auto D = [](const hal::CameraModel& c) {
+  auto D = [](const hal::CameraModel& c) -> cv::Mat {
     return (cv::Mat_<double>(1, 5) << c.k1, c.k2, c.p1, c.p2, c.k3);
   };
   cv::Mat R(3, 3, CV_64F), T(3, 1, CV_64F);
@@ -136,7 +136,7 @@ void save_stereo_calibration(const std::string& file, const hal::StereoRig& rig)
   }
   const std::string tmp = file + ".tmp";
   {
-    cv::FileStorage fs(tmp, cv::FileStorage::WRITE);
+    cv::FileStorage fs(tmp, cv::FileStorage::WRITE | cv::FileStorage::FORMAT_YAML);
     if (!fs.isOpened()) throw std::runtime_error(file + ": cannot write calibration file");
     fs << "image_size" << std::vector<int>{rig.left.width_px, rig.left.height_px};
     fs << "K1" << K(rig.left) << "D1" << D(rig.left) << "K2" << K(rig.right) << "D2"

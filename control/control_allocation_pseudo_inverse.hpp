@@ -1,0 +1,42 @@
+// Thruster allocation: a weighted pseudo-inverse of the effectiveness matrix, computed once at
+// start-up; saturation scales the whole thrust vector so the wrench keeps its direction.
+#pragma once
+
+#include <Eigen/Core>
+
+#include "control/control_params.hpp"
+#include "control/thruster_effectiveness.hpp"
+#include "hal/thruster_bus.hpp"
+#include "hal/thruster_layout.hpp"
+
+namespace rovctl::control {
+
+// n x 6: thrust [N] per unit of each wrench axis.
+using MixMatrix = Eigen::Matrix<double, Eigen::Dynamic, 6, 0, hal::kMaxThrusters, 6>;
+
+class ControlAllocator {
+ public:
+  // Throws std::invalid_argument for a bad layout or a weight naming no thruster.
+  ControlAllocator(const hal::ThrusterLayout& layout, const AllocationParams& params);
+
+  // Thruster commands in [-1, 1] for the wrench, indexed by bus channel (count = highest
+  // channel + 1, unused channels neutral). Returns the fraction of the wrench achieved: 1 when
+  // no thruster saturates, else the common scale that brought the busiest one to its limit.
+  // A non-finite wrench gives neutral commands and 0. No allocation.
+  double allocate(const Wrench& wrench_body, hal::ThrusterCommand& command) const;
+
+  // The thrusts [N] before saturation (min weighted-norm solution). No allocation.
+  ThrustVector thrust_for(const Wrench& wrench_body) const { return mix_ * wrench_body; }
+  // Sets every channel of the layout to neutral.
+  void neutral(hal::ThrusterCommand& command) const;
+
+  const ThrusterEffectiveness& effectiveness() const { return effectiveness_; }
+  const MixMatrix& mix() const { return mix_; }
+
+ private:
+  ThrusterEffectiveness effectiveness_;
+  MixMatrix mix_;
+  std::size_t channel_count_ = 0;
+};
+
+}  // namespace rovctl::control

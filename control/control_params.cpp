@@ -1,0 +1,131 @@
+// Parameter declarations of the `control` and `mission` config sections.
+#include "control/control_params.hpp"
+
+namespace rovctl::control {
+
+void describe(hal::ParamVisitor& v, ServoParams& p) {
+  v.param("six_dof", p.six_dof,
+          "servo all six axes; false servoes x, y, z and yaw and only damps roll and pitch");
+  v.param("kp_linear", p.kp_linear,
+          {"N/m", 0.0, 1000.0, "proportional gains on the position error, body x, y, z"});
+  v.param("kd_linear", p.kd_linear,
+          {"N s/m", 0.0, 1000.0, "derivative gains on the filtered position-error rate"});
+  v.param("ki_linear", p.ki_linear,
+          {"N/(m s)", 0.0, 1000.0, "integral gains on the position error (0 = no integral)"});
+  v.param("kp_angular", p.kp_angular,
+          {"N m/rad", 0.0, 200.0, "proportional gains on the roll, pitch, yaw error"});
+  v.param("kd_angular", p.kd_angular,
+          {"N m s/rad", 0.0, 200.0, "derivative gains on the filtered angle-error rate"});
+  v.param("ki_angular", p.ki_angular,
+          {"N m/(rad s)", 0.0, 200.0, "integral gains on the angle error (0 = no integral)"});
+  v.param("integral_limit_linear_n", p.integral_limit_linear_n,
+          {"N", 0.0, 500.0, "anti-windup: largest integral force per body axis"});
+  v.param("integral_limit_angular_nm", p.integral_limit_angular_nm,
+          {"N m", 0.0, 100.0, "anti-windup: largest integral moment per body axis"});
+  v.param("max_position_error_m", p.max_position_error_m,
+          {"m", 0.01, 20.0, "position error norm seen by P and I (bounds the approach speed)"});
+  v.param("max_angle_error_rad", p.max_angle_error_rad,
+          {"rad", 0.01, 3.2, "rotation error norm seen by P and I"});
+  v.param("rate_cutoff_hz", p.rate_cutoff_hz,
+          {"Hz", 0.05, 15.0, "cut-off of the low-pass on the differentiated error"});
+  v.param("max_update_gap_s", p.max_update_gap_s,
+          {"s", 0.01, 5.0, "a longer gap between updates restarts the derivative"});
+  v.param("net_buoyancy_n", p.net_buoyancy_n,
+          {"N", -100.0, 100.0, "buoyancy minus weight; fed forward as a downward force"});
+}
+
+void describe(hal::ParamVisitor& v, AllocationParams& p) {
+  hal::param_list(v, "thruster_weights",
+                  "effort weights of named thrusters (higher = used less; others weigh 1)",
+                  p.thruster_weights, 0, 8, [](hal::ParamVisitor& e, ThrusterWeight& w) {
+                    e.param("thruster", w.thruster, "thruster name from vehicle.thrusters", {},
+                            true);
+                    e.param("weight", w.weight, {"-", 0.01, 100.0, "effort weight", true});
+                  });
+  v.param("axis_weights_force", p.axis_weights_force,
+          {"-", 0.001, 1000.0, "priority of Fx, Fy, Fz when not every axis can be produced"});
+  v.param("axis_weights_moment", p.axis_weights_moment,
+          {"-", 0.001, 1000.0, "priority of Mx, My, Mz when not every axis can be produced"});
+  v.param("deadband", p.deadband,
+          {"-", 0.0, 0.5, "ESC deadband (command fraction) that the commands skip; 0 for none"});
+}
+
+void describe(hal::ParamVisitor& v, FailsafeParams& p) {
+  v.param("camera_timeout_ticks", p.camera_timeout_ticks,
+          {"ticks", 1, 1000, "consecutive camera timeouts before the safe state (lost: at once)"});
+  v.param("bus_degraded_ticks", p.bus_degraded_ticks,
+          {"ticks", 1, 1000, "consecutive degraded bus writes before the safe state"});
+  v.param("max_mission_time_s", p.max_mission_time_s,
+          {"s", 0.0, 86400.0, "mission time after which the vehicle is made safe (0 = none)"});
+  v.param("action", p.action, "safe state: disarm the bus, or stay armed at neutral thrust",
+          {"disarm", "neutral"});
+}
+
+void describe(hal::ParamVisitor& v, ControlParams& p) {
+  v.section("servo", "PD visual servo on the relative-pose error",
+            [&p](hal::ParamVisitor& s) { describe(s, p.servo); });
+  v.section("allocation", "thruster allocation (weighted pseudo-inverse)",
+            [&p](hal::ParamVisitor& s) { describe(s, p.allocation); });
+  v.section("failsafe", "run-time fault monitors and the safe state",
+            [&p](hal::ParamVisitor& s) { describe(s, p.failsafe); });
+}
+
+void describe(hal::ParamVisitor& v, MissionParams& p) {
+  v.param("min_fitness", p.min_fitness,
+          {"-", 0.0, 1.0, "estimate fitness at or above which the marker counts as recognised"});
+  v.param("acquire_frames", p.acquire_frames,
+          {"frames", 1, 1000, "consecutive recognised frames that end SEARCH"});
+  v.param("lost_frames", p.lost_frames,
+          {"frames", 1, 1000, "consecutive unrecognised frames that abort APPROACH/ALIGN/DOCK"});
+  v.param("search_yaw_moment_nm", p.search_yaw_moment_nm,
+          {"N m", -20.0, 20.0, "yaw moment of the SEARCH scan (sign: direction)"});
+  v.param("search_timeout_s", p.search_timeout_s,
+          {"s", 0.0, 86400.0, "SEARCH time after which the mission fails (0 = none)"});
+  v.param("standoff_m", p.standoff_m,
+          {"m", 0.05, 5.0, "stand-off distance back from docked along the docking axis"});
+  v.param("approach_lateral_m", p.approach_lateral_m,
+          {"m", 0.001, 2.0, "lateral error that ends APPROACH"});
+  v.param("approach_axial_m", p.approach_axial_m,
+          {"m", 0.001, 2.0, "axial error that ends APPROACH"});
+  v.param("approach_yaw_rad", p.approach_yaw_rad,
+          {"rad", 0.001, 3.2, "yaw error that ends APPROACH"});
+  v.param("approach_timeout_s", p.approach_timeout_s,
+          {"s", 1.0, 3600.0, "APPROACH time limit (then ABORT)"});
+  v.param("align_lateral_m", p.align_lateral_m,
+          {"m", 0.0005, 1.0, "ALIGN: lateral error threshold"});
+  v.param("align_axial_m", p.align_axial_m, {"m", 0.0005, 1.0, "ALIGN: axial error threshold"});
+  v.param("align_yaw_rad", p.align_yaw_rad, {"rad", 0.0005, 1.0, "ALIGN: yaw error threshold"});
+  v.param("align_hold_frames", p.align_hold_frames,
+          {"frames", 1, 10000, "consecutive frames within the ALIGN thresholds before DOCK"});
+  v.param("align_timeout_s", p.align_timeout_s,
+          {"s", 1.0, 3600.0, "ALIGN time limit (then ABORT)"});
+  v.param("dock_speed_mps", p.dock_speed_mps,
+          {"m/s", 0.005, 1.0, "speed of the DOCK set-point along the docking axis"});
+  v.param("dock_overshoot_m", p.dock_overshoot_m,
+          {"m", 0.0, 0.5, "how far past the socket mouth the DOCK set-point goes"});
+  v.param("dock_abort_lateral_m", p.dock_abort_lateral_m,
+          {"m", 0.001, 1.0, "DOCK aborts beyond this lateral error"});
+  v.param("dock_abort_yaw_rad", p.dock_abort_yaw_rad,
+          {"rad", 0.001, 3.2, "DOCK aborts beyond this yaw error"});
+  v.param("dock_timeout_s", p.dock_timeout_s, {"s", 1.0, 3600.0, "DOCK time limit (then ABORT)"});
+  v.param("dock_blind_distance_m", p.dock_blind_distance_m,
+          {"m", 0.0, 2.0, "remaining distance within which losing the marker does not abort"});
+  v.param("dock_blind_push_n", p.dock_blind_push_n,
+          {"N", 0.0, 200.0, "push along the docking axis while docking blind"});
+  v.param("dock_blind_timeout_s", p.dock_blind_timeout_s,
+          {"s", 0.0, 60.0, "longest blind push before ABORT"});
+  v.param("contact_switch", p.contact_switch, "the contact input (switch, sim) ends DOCK");
+  v.param("contact_from_vision", p.contact_from_vision,
+          "vision alone may end DOCK (probe past the socket mouth, within the lateral limit)");
+  v.param("vision_contact_depth_m", p.vision_contact_depth_m,
+          {"m", 0.0, 0.5, "depth past the socket mouth that vision counts as contact"});
+  v.param("contact_frames", p.contact_frames,
+          {"frames", 1, 1000, "consecutive frames of contact that end DOCK"});
+  v.param("abort_backoff_force_n", p.abort_backoff_force_n,
+          {"N", 0.0, 200.0, "backward force while backing off in ABORT"});
+  v.param("abort_backoff_s", p.abort_backoff_s, {"s", 0.0, 60.0, "duration of the back-off"});
+  v.param("max_retries", p.max_retries,
+          {"-", 0, 100, "aborts allowed; one more and the mission fails"});
+}
+
+}  // namespace rovctl::control

@@ -1,0 +1,128 @@
+// The `control` and `mission` config sections: servo gains, rate filter, allocation weights,
+// failsafe limits and the docking mission's thresholds, each declared once by describe().
+#pragma once
+
+#include <Eigen/Core>
+#include <string>
+#include <vector>
+
+#include "hal/parameters.hpp"
+
+namespace rovctl::control {
+
+// The PD(+I) visual servo. Linear gains act on the position error in body axes (x fwd, y stbd,
+// z down), angular gains on the rotation error (roll, pitch, yaw about body x, y, z).
+struct ServoParams {
+  // false: x, y, z and yaw are servoed; roll and pitch (passively stable on a BlueROV2) only get
+  // their derivative (damping) term. true: all six axes.
+  bool six_dof = false;
+  Eigen::Vector3d kp_linear{80.0, 90.0, 90.0};  // N/m
+  Eigen::Vector3d kd_linear{60.0, 60.0, 70.0};  // N s/m
+  Eigen::Vector3d ki_linear{20.0, 30.0, 30.0};  // N/(m s)
+  Eigen::Vector3d kp_angular{4.0, 4.0, 8.0};    // N m/rad
+  Eigen::Vector3d kd_angular{1.0, 1.0, 3.0};    // N m s/rad
+  Eigen::Vector3d ki_angular{0.0, 0.0, 1.0};    // N m/(rad s)
+  // Anti-windup: the integral term's magnitude per axis never exceeds these.
+  Eigen::Vector3d integral_limit_linear_n{8.0, 8.0, 8.0};
+  Eigen::Vector3d integral_limit_angular_nm{1.0, 1.0, 1.0};
+  // The proportional and integral terms see the error clipped to these norms, which bounds the
+  // approach speed (about kp * max / kd) so the estimator can keep the marker tracked.
+  double max_position_error_m = 0.2;
+  double max_angle_error_rad = 0.6;
+  // First-order low-pass on the differentiated error.
+  double rate_cutoff_hz = 1.5;
+  // A gap longer than this between updates restarts the derivative (no kick from stale data).
+  double max_update_gap_s = 0.25;
+  // Buoyancy minus weight; the feed-forward pushes down (body +z) by this much.
+  double net_buoyancy_n = 2.0;
+};
+
+void describe(hal::ParamVisitor& v, ServoParams& p);
+
+struct ThrusterWeight {
+  std::string thruster;  // a name from vehicle.thrusters
+  double weight = 1.0;
+};
+
+// Weighted pseudo-inverse: thruster weights price each thruster's effort (higher = used less);
+// axis weights rank the wrench axes when the layout cannot produce all of them.
+struct AllocationParams {
+  std::vector<ThrusterWeight> thruster_weights;  // thrusters not listed weigh 1
+  Eigen::Vector3d axis_weights_force{1.0, 1.0, 1.0};
+  Eigen::Vector3d axis_weights_moment{1.0, 1.0, 1.0};
+  // The ESCs' deadband as a command fraction (Blue Robotics Basic ESC: 25 of 400 us); commands
+  // skip it so that small forces are not lost. 0 when the bus already compensates.
+  double deadband = 0.0625;
+};
+
+void describe(hal::ParamVisitor& v, AllocationParams& p);
+
+struct FailsafeParams {
+  // Consecutive camera timeouts tolerated (a lost device trips at once).
+  int camera_timeout_ticks = 5;
+  // Consecutive degraded bus writes tolerated (a faulted bus trips at once).
+  int bus_degraded_ticks = 10;
+  // Longest a mission may run before the vehicle is made safe; 0 = no limit.
+  double max_mission_time_s = 0.0;
+  // "disarm": disarm the bus (ESCs neutral, vehicle floats up); "neutral": armed, zero thrust.
+  std::string action = "disarm";
+};
+
+void describe(hal::ParamVisitor& v, FailsafeParams& p);
+
+struct ControlParams {
+  ServoParams servo;
+  AllocationParams allocation;
+  FailsafeParams failsafe;
+};
+
+void describe(hal::ParamVisitor& v, ControlParams& p);
+
+// The docking mission's thresholds. Lateral and axial errors are those of the vehicle's control
+// point (the probe tip) in the marker frame: lateral = off the docking axis, axial = along it.
+struct MissionParams {
+  // Recognition: fitness at or above this counts as seeing the marker.
+  double min_fitness = 0.6;
+  int acquire_frames = 3;  // consecutive recognised frames to leave SEARCH
+  int lost_frames = 8;     // consecutive unrecognised frames that abort APPROACH/ALIGN/DOCK
+  // SEARCH: constant yaw moment (sets a slow scan against the yaw drag); sign = direction.
+  double search_yaw_moment_nm = 0.6;
+  double search_timeout_s = 0.0;  // 0 = search forever
+  // APPROACH: servo to the stand-off pose, this far back from docked along the docking axis.
+  double standoff_m = 0.5;
+  double approach_lateral_m = 0.05;  // enter ALIGN when within these
+  double approach_axial_m = 0.08;
+  double approach_yaw_rad = 0.10;
+  double approach_timeout_s = 90.0;
+  // ALIGN: hold the stand-off until the error stays within these for hold_frames frames.
+  double align_lateral_m = 0.008;
+  double align_axial_m = 0.03;
+  double align_yaw_rad = 0.03;
+  int align_hold_frames = 20;
+  double align_timeout_s = 60.0;
+  // DOCK: the set-point advances along the docking axis at this speed to this far past the
+  // socket mouth; the dock aborts when the error leaves these limits.
+  double dock_speed_mps = 0.06;
+  double dock_overshoot_m = 0.05;
+  double dock_abort_lateral_m = 0.03;
+  double dock_abort_yaw_rad = 0.10;
+  double dock_timeout_s = 40.0;
+  // Near the socket the marker leaves the cameras' view: within this remaining distance a lost
+  // marker does not abort, the vehicle pushes along the docking axis for up to blind_timeout_s.
+  double dock_blind_distance_m = 0.15;
+  double dock_blind_push_n = 8.0;
+  double dock_blind_timeout_s = 4.0;
+  // Contact: the contact switch, and optionally vision (past the socket mouth by this depth).
+  bool contact_switch = true;
+  bool contact_from_vision = false;
+  double vision_contact_depth_m = 0.01;
+  int contact_frames = 2;
+  // ABORT: back off along body -x with this force for this long, then SEARCH again.
+  double abort_backoff_force_n = 15.0;
+  double abort_backoff_s = 3.0;
+  int max_retries = 3;  // aborts after which the mission fails
+};
+
+void describe(hal::ParamVisitor& v, MissionParams& p);
+
+}  // namespace rovctl::control

@@ -1,0 +1,66 @@
+// PD (+ optional I) visual servo: the error between where the marker is and where it should be,
+// expressed as the motion the body must make (body axes), drives a body wrench.
+#pragma once
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <chrono>
+
+#include "control/control_params.hpp"
+#include "control/rate_filter.hpp"
+#include "control/thruster_effectiveness.hpp"
+
+namespace rovctl::control {
+
+// [x y z roll pitch yaw] error: the desired body pose seen from the current body, in body axes
+// (m, rad). Positive x: the vehicle must go forward; positive yaw: it must turn to starboard.
+using PoseError = Eigen::Matrix<double, 6, 1>;
+
+// The body-frame pose error between a measured and a desired T_cl_marker. With six_dof false
+// the rotation error's yaw is that of the marker's z axis projected on the body x-y plane, and
+// the position error ignores the roll/pitch mismatch (which the vehicle cannot correct).
+PoseError pose_error_body(const Eigen::Isometry3d& T_body_cl,
+                          const Eigen::Isometry3d& T_cl_marker_measured,
+                          const Eigen::Isometry3d& T_cl_marker_desired, bool six_dof);
+
+class PdVisualServo {
+ public:
+  // Throws std::invalid_argument for a bad rate cut-off.
+  PdVisualServo(const ServoParams& params, const Eigen::Isometry3d& T_body_cl);
+
+  // measured/desired: T_cl_marker. dt: time since the previous update (a gap longer than
+  // max_update_gap_s restarts the derivative). A non-finite input leaves the state as it was and
+  // returns a NaN wrench, for the failsafe to act on. No allocation.
+  Wrench update(const Eigen::Isometry3d& T_cl_marker_measured,
+                const Eigen::Isometry3d& T_cl_marker_desired, std::chrono::nanoseconds dt);
+
+  // Anti-windup from the allocation: while the last wrench was scaled down (fraction < 1) the
+  // integral may only shrink.
+  void set_allocation_fraction(double achieved_fraction) { saturated_ = achieved_fraction < 0.999; }
+
+  // Clears the integral and the derivative; call when the servo (re)starts.
+  void reset();
+
+  // Constant feed-forward (net buoyancy), included in update()'s wrench.
+  Wrench feedforward_body() const { return feedforward_; }
+  // What holds the vehicle's trim while the servo cannot see: the feed-forward plus the
+  // integral term (the learned push against the current). Add it to the mission's override
+  // wrenches (brief loss, blind push near the socket) in place of feedforward_body().
+  Wrench hold_wrench_body() const { return feedforward_ + integral_term(); }
+
+  // The last update's terms, for telemetry.
+  const PoseError& error() const { return error_; }
+  const PoseError& error_rate() const { return rate_.rate(); }
+  Wrench integral_term() const { return ki_.cwiseProduct(integral_); }
+
+ private:
+  ServoParams p_;
+  Eigen::Isometry3d T_body_cl_;
+  Wrench kp_, kd_, ki_, integral_limit_, feedforward_;
+  RateFilter rate_;
+  PoseError integral_ = PoseError::Zero();  // of the clipped error, m s and rad s
+  PoseError error_ = PoseError::Zero();
+  bool saturated_ = false;
+};
+
+}  // namespace rovctl::control

@@ -1,0 +1,51 @@
+// Improvement beyond the paper: finds each colour's blob in both label images, triangulates the
+// sphere centres and fits the marker model to them (Umeyama) to seed the GA with a pose.
+#pragma once
+
+#include <Eigen/Geometry>
+#include <array>
+#include <cstdint>
+#include <opencv2/core/mat.hpp>
+#include <vector>
+
+#include "hal/marker_model.hpp"
+#include "hal/stereo_rig.hpp"
+
+namespace rovctl::estimator {
+
+// One colour's largest blob in one image: the centroid of its silhouette (row spans, so the
+// specular highlight's hole is filled) in distorted pixel coordinates.
+struct Blob {
+  bool valid = false;
+  bool touches_border = false;
+  double u_px = 0.0, v_px = 0.0;
+  double area_px = 0.0;
+};
+
+// [view 0 = left, 1 = right][colour class]
+using BlobSet = std::array<std::array<Blob, hal::kColourClassCount>, 2>;
+
+class BlobSeeder {
+ public:
+  BlobSeeder(const hal::StereoRig& rig, const hal::MarkerModel& marker);
+
+  // Finds the blobs of one view (0 left, 1 right). Allocates nothing.
+  void find(int view, const cv::Mat& labels);
+  const BlobSet& blobs() const { return blobs_; }
+
+  // The marker pose from the sphere centres triangulated from whole blobs seen in both views;
+  // false when a sphere is missing or cut by the image border.
+  bool seed(Eigen::Isometry3d& T_cl_marker) const;
+
+ private:
+  static constexpr int kCell = 8;
+  hal::StereoRig rig_;
+  hal::MarkerModel marker_;
+  BlobSet blobs_{};
+  int cells_x_ = 0, cells_y_ = 0;
+  std::vector<std::uint16_t> counts_;  // [class][cell] pixels of that class per 8x8 cell
+  std::vector<std::uint8_t> visited_;
+  std::vector<int> stack_;
+};
+
+}  // namespace rovctl::estimator

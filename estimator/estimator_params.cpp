@@ -1,0 +1,81 @@
+// Declarations (key, unit, range, meaning) of the estimator section.
+#include "estimator/estimator_params.hpp"
+
+#include <stdexcept>
+
+namespace rovctl::estimator {
+
+void EstimatorParams::validate() const {
+  auto ordered = [](double lo, double hi, const char* key) {
+    if (!(lo < hi)) {
+      throw std::invalid_argument(std::string("estimator.search.") + key +
+                                  ": min must be below max");
+    }
+  };
+  ordered(search.x_min_m, search.x_max_m, "x");
+  ordered(search.y_min_m, search.y_max_m, "y");
+  ordered(search.z_min_m, search.z_max_m, "z");
+  if (ga.elite_count >= ga.population) {
+    throw std::invalid_argument("estimator.ga.elite_count must be below estimator.ga.population");
+  }
+  if (fitness.outer_radius_fraction <= fitness.inner_radius_fraction) {
+    throw std::invalid_argument(
+        "estimator.fitness.outer_radius_fraction must exceed inner_radius_fraction");
+  }
+}
+
+void describe(hal::ParamVisitor& v, EstimatorParams& p) {
+  v.param("mode", p.mode,
+          "faithful: the paper's RM-GA alone; improved: plus blob seeding, elite refinement and "
+          "motion prediction (each switchable below)",
+          {"faithful", "improved"});
+  v.param("budget", p.budget,
+          "generations per frame: a fixed count (reproducible) or as many as fit in the time "
+          "budget",
+          {"generations", "time"});
+  v.param("generations_per_frame", p.generations_per_frame,
+          {"-", 1, 10000, "GA generations per frame when budget is 'generations' (paper: 9)"});
+  v.param("time_budget_ms", p.time_budget_ms,
+          {"ms", 0.1, 1000.0, "GA time per frame when budget is 'time'"});
+  v.param("recognition_threshold", p.recognition_threshold,
+          {"-", 0.0, 1.0, "fitness at or above which the marker counts as recognised (paper: 0.6)"});
+  v.section("ga", "the genetic algorithm (paper's Table 2)", [&p](hal::ParamVisitor& s) {
+    s.param("population", p.ga.population, {"-", 4, 2000, "number of genes"});
+    s.param("selection_rate", p.ga.selection_rate,
+            {"-", 0.05, 1.0, "fraction of the population, by rank, that survives and breeds"});
+    s.param("mutation_rate", p.ga.mutation_rate,
+            {"-", 0.0, 1.0, "probability that an offspring is mutated"});
+    s.param("elite_count", p.ga.elite_count,
+            {"-", 0, 100, "best genes carried over unchanged (elitism)"});
+  });
+  v.section("search", "GA search volume: marker origin in the left camera frame",
+            [&p](hal::ParamVisitor& s) {
+              s.param("x_min_m", p.search.x_min_m, {"m", -5.0, 5.0, "lowest x (right)"});
+              s.param("x_max_m", p.search.x_max_m, {"m", -5.0, 5.0, "highest x"});
+              s.param("y_min_m", p.search.y_min_m, {"m", -5.0, 5.0, "lowest y (down)"});
+              s.param("y_max_m", p.search.y_max_m, {"m", -5.0, 5.0, "highest y"});
+              s.param("z_min_m", p.search.z_min_m, {"m", 0.05, 10.0, "nearest z (ahead)"});
+              s.param("z_max_m", p.search.z_max_m, {"m", 0.05, 10.0, "farthest z"});
+              s.param("epsilon_max", p.search.epsilon_max,
+                      {"-", 0.01, 1.0,
+                       "range of each quaternion vector component e1..e3 (0.5: 60 deg per axis)"});
+            });
+  v.section("fitness", "sample points of the fitness function", [&p](hal::ParamVisitor& s) {
+    s.param("inner_points", p.fitness.inner_points,
+            {"-", 1, 256, "points inside each projected sphere"});
+    s.param("outer_points", p.fitness.outer_points,
+            {"-", 1, 256, "points on the background ring around each projected sphere"});
+    s.param("inner_radius_fraction", p.fitness.inner_radius_fraction,
+            {"-", 0.1, 1.0, "inner points lie within this fraction of the projected radius"});
+    s.param("outer_radius_fraction", p.fitness.outer_radius_fraction,
+            {"-", 1.0, 4.0, "radius of the background ring, in projected radii"});
+  });
+  v.param("blob_seeding", p.blob_seeding,
+          "improved mode: seed genes from colour blobs triangulated in both images");
+  v.param("refine_elite", p.refine_elite,
+          "improved mode: least-squares refinement of the elite on the blobs' centroids");
+  v.param("motion_prediction", p.motion_prediction,
+          "improved mode: move the population by the camera motion since the last frame");
+}
+
+}  // namespace rovctl::estimator

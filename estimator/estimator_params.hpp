@@ -1,0 +1,59 @@
+// The `estimator` config section: segmentation samples, the RM-GA's parameters (defaults from the
+// paper's Table 2), the search volume, the per-frame budget and the improvements beyond the paper.
+#pragma once
+
+#include <string>
+
+#include "hal/parameters.hpp"
+
+namespace rovctl::estimator {
+
+// Where the genes live: the marker origin in the left camera frame, and the range of the
+// quaternion's vector part (each of e1, e2, e3 in [-epsilon_max, epsilon_max]).
+struct SearchVolume {
+  double x_min_m = -0.4, x_max_m = 0.4;
+  double y_min_m = -0.2, y_max_m = 0.2;
+  double z_min_m = 0.15, z_max_m = 1.6;
+  double epsilon_max = 0.5;  // 0.5: up to 60 degrees about any one axis
+};
+
+// Sample points of the fitness function, in units of each sphere's projected radius.
+struct FitnessParams {
+  int inner_points = 16;
+  int outer_points = 16;
+  double inner_radius_fraction = 0.8;  // inner points lie within this fraction of the radius
+  double outer_radius_fraction = 1.4;  // the background ring lies at this fraction
+};
+
+struct GaParams {
+  int population = 40;
+  double selection_rate = 0.6;  // the top fraction (by rank) that survives and breeds
+  double mutation_rate = 0.1;   // probability that an offspring is mutated
+  int elite_count = 1;          // best individuals carried unchanged (elitism)
+};
+
+struct EstimatorParams {
+  // "faithful": the paper's RM-GA alone. "improved": plus the switches below.
+  std::string mode = "improved";
+  GaParams ga;
+  SearchVolume search;
+  FitnessParams fitness;
+  // "generations": a fixed count per frame (reproducible with a seed); "time": as many
+  // generations as fit in time_budget_ms.
+  std::string budget = "generations";
+  int generations_per_frame = 9;
+  double time_budget_ms = 15.0;
+  double recognition_threshold = 0.6;
+  // Improvements (used when mode is "improved").
+  bool blob_seeding = true;       // seed individuals from colour blobs triangulated in 3D
+  bool refine_elite = true;       // least-squares refinement of the elite on blob centroids
+  bool motion_prediction = true;  // move the population by the camera motion between frames
+
+  bool improved() const { return mode == "improved"; }
+  // Cross-field checks the per-key ranges cannot express; throws std::invalid_argument.
+  void validate() const;
+};
+
+void describe(hal::ParamVisitor& v, EstimatorParams& params);
+
+}  // namespace rovctl::estimator

@@ -1,0 +1,116 @@
+// Fitness evaluation: per sphere and view, one distorted projection and its Jacobian, then the
+// precomputed unit-disc sample offsets are mapped to pixels and looked up in the label image.
+#include "estimator/marker_fitness.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+namespace rovctl::estimator {
+namespace {
+
+// Normalised image coordinates -> distorted pixel (CameraModel::project without the division).
+inline void distort(const hal::CameraModel& c, double x, double y, double& u, double& v) {
+  const double r2 = x * x + y * y;
+  const double radial = 1.0 + r2 * (c.k1 + r2 * (c.k2 + r2 * c.k3));
+  const double xd = x * radial + 2.0 * c.p1 * x * y + c.p2 * (r2 + 2.0 * x * x);
+  const double yd = y * radial + c.p1 * (r2 + 2.0 * y * y) + 2.0 * c.p2 * x * y;
+  u = c.fx_px * xd + c.cx_px;
+  v = c.fy_px * yd + c.cy_px;
+}
+
+}  // namespace
+
+MarkerFitness::MarkerFitness(const hal::StereoRig& rig, const hal::MarkerModel& marker,
+                             const FitnessParams& params) {
+  views_[0].camera = rig.left;
+  views_[0].R_v_cl = Eigen::Matrix3d::Identity();
+  views_[0].t_v_cl = Eigen::Vector3d::Zero();
+  views_[1].camera = rig.right;
+  views_[1].R_v_cl = rig.T_cr_cl.linear();
+  views_[1].t_v_cl = rig.T_cr_cl.translation();
+  for (const hal::MarkerSphere& s : marker.spheres) {
+    spheres_.push_back({s.centre_marker_m, s.radius_m, static_cast<std::uint8_t>(s.colour)});
+  }
+  if (spheres_.empty()) throw std::invalid_argument("MarkerFitness: the marker has no spheres");
+  // Inner points on a sunflower (Vogel) spiral: even cover of the disc for any count.
+  const double golden = M_PI * (3.0 - std::sqrt(5.0));
+  for (int k = 0; k < params.inner_points; ++k) {
+    const double rho = params.inner_radius_fraction * std::sqrt((k + 0.5) / params.inner_points);
+    inner_xy_.push_back(static_cast<float>(rho * std::cos(k * golden)));
+    inner_xy_.push_back(static_cast<float>(rho * std::sin(k * golden)));
+  }
+  for (int k = 0; k < params.outer_points; ++k) {
+    const double phi = 2.0 * M_PI * (k + 0.5) / params.outer_points;
+    outer_xy_.push_back(static_cast<float>(params.outer_radius_fraction * std::cos(phi)));
+    outer_xy_.push_back(static_cast<float>(params.outer_radius_fraction * std::sin(phi)));
+  }
+  inv_inner_ = 1.0f / params.inner_points;
+  inv_outer_ = 1.0f / params.outer_points;
+}
+
+void MarkerFitness::set_labels(const cv::Mat& left, const cv::Mat& right) {
+  const cv::Mat* m[2] = {&left, &right};
+  for (int i = 0; i < 2; ++i) {
+    const hal::CameraModel& c = views_[i].camera;
+    if (m[i]->type() != CV_8UC1 || m[i]->cols != c.width_px || m[i]->rows != c.height_px) {
+      throw std::invalid_argument("MarkerFitness: label image size differs from the calibration");
+    }
+    views_[i].labels = m[i]->ptr<std::uint8_t>(0);
+    views_[i].stride = static_cast<int>(m[i]->step[0]);
+  }
+}
+
+double MarkerFitness::score_view(const View& view, const Eigen::Vector3d& c,
+                                 const Sphere& s) const {
+  const double r = s.radius_m;
+  const double d2 = c.squaredNorm();
+  if (c.z() <= r * 1.01 || d2 <= r * r * 1.0201) return 0.0;
+  const double x = c.x() / c.z(), y = c.y() / c.z();
+  double u0, v0, ux, vx, uy, vy;
+  constexpr double h = 1e-4;
+  distort(view.camera, x, y, u0, v0);
+  distort(view.camera, x + h, y, ux, vx);
+  distort(view.camera, x, y + h, uy, vy);
+  // Apparent radius on the normalised image plane: tan of the half-angle, stretched by 1/cos of
+  // the angle off the optical axis.
+  const double rn = r / std::sqrt(d2 - r * r) * std::sqrt(d2) / c.z();
+  const double k = rn / h;
+  const float a00 = static_cast<float>((ux - u0) * k), a01 = static_cast<float>((uy - u0) * k);
+  const float a10 = static_cast<float>((vx - v0) * k), a11 = static_cast<float>((vy - v0) * k);
+  // +0.5 so that truncation rounds to the nearest pixel centre.
+  const float cu = static_cast<float>(u0) + 0.5f, cv = static_cast<float>(v0) + 0.5f;
+  const unsigned w = static_cast<unsigned>(view.camera.width_px);
+  const unsigned hgt = static_cast<unsigned>(view.camera.height_px);
+  const std::uint8_t* labels = view.labels;
+  const int stride = view.stride;
+  const std::uint8_t colour = s.colour;
+  auto hit = [&](float ox, float oy) -> int {
+    const float pu = cu + a00 * ox + a01 * oy;
+    const float pv = cv + a10 * ox + a11 * oy;
+    if (!(pu >= 0.0f && pv >= 0.0f)) return 0;
+    const unsigned iu = static_cast<unsigned>(pu), iv = static_cast<unsigned>(pv);
+    if (iu >= w || iv >= hgt) return 0;
+    return labels[static_cast<std::size_t>(iv) * stride + iu] == colour;
+  };
+  int inside = 0, outside = 0;
+  const float* p = inner_xy_.data();
+  for (std::size_t i = 0; i < inner_xy_.size(); i += 2) inside += hit(p[i], p[i + 1]);
+  p = outer_xy_.data();
+  for (std::size_t i = 0; i < outer_xy_.size(); i += 2) outside += hit(p[i], p[i + 1]);
+  return inside * inv_inner_ - outside * inv_outer_;
+}
+
+double MarkerFitness::evaluate(const Eigen::Isometry3d& T_cl_marker) const {
+  if (views_[0].labels == nullptr) return 0.0;
+  double sum = 0.0;
+  for (const Sphere& s : spheres_) {
+    const Eigen::Vector3d c_cl = T_cl_marker * s.centre_marker_m;
+    sum += score_view(views_[0], c_cl, s);
+    sum += score_view(views_[1], views_[1].R_v_cl * c_cl + views_[1].t_v_cl, s);
+  }
+  const double f = sum / (2.0 * static_cast<double>(spheres_.size()));
+  return std::isfinite(f) ? std::clamp(f, 0.0, 1.0) : 0.0;
+}
+
+}  // namespace rovctl::estimator

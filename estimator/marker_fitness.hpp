@@ -1,0 +1,59 @@
+// The RM-GA's fitness: how well the three-sphere model at a candidate pose matches the segmented
+// left and right images (the paper's Sec. 2.2 and Fig. 4), with lens distortion.
+#pragma once
+
+#include <Eigen/Geometry>
+#include <array>
+#include <opencv2/core/mat.hpp>
+#include <vector>
+
+#include "estimator/estimator_params.hpp"
+#include "hal/marker_model.hpp"
+#include "hal/stereo_rig.hpp"
+
+namespace rovctl::estimator {
+
+// For each view v in {left, right} and each sphere s (S spheres), project the sphere with the
+// candidate pose; r is its projected radius. Sample N_in points inside the disc (within
+// inner_radius_fraction * r) and N_out points on a ring at outer_radius_fraction * r around it,
+// each mapped through the local Jacobian of the distorted projection. With c_s the sphere's colour
+// class and L_v(p) the label of pixel p (points outside the image are `none`):
+//
+//   score(v, s) = #{ i : L_v(p_i) = c_s } / N_in  -  #{ j : L_v(q_j) = c_s } / N_out
+//   F = max(0, sum_{v, s} score(v, s) / (2 S))                      (F in [0, 1])
+//
+// A sphere behind a camera scores 0 in that view. The true pose scores ~1 (all inner points on
+// the sphere's colour, none of the ring); a pose one radius off scores ~0.5.
+class MarkerFitness {
+ public:
+  MarkerFitness(const hal::StereoRig& rig, const hal::MarkerModel& marker,
+                const FitnessParams& params);
+
+  // The current frame's label images (CV_8UC1, each its camera's size), referenced, not copied:
+  // they must outlive the evaluations.
+  void set_labels(const cv::Mat& left_labels, const cv::Mat& right_labels);
+
+  double evaluate(const Eigen::Isometry3d& T_cl_marker) const;
+
+ private:
+  struct View {
+    hal::CameraModel camera;
+    Eigen::Matrix3d R_v_cl;
+    Eigen::Vector3d t_v_cl;
+    const std::uint8_t* labels = nullptr;
+    int stride = 0;
+  };
+  struct Sphere {
+    Eigen::Vector3d centre_marker_m;
+    double radius_m;
+    std::uint8_t colour;
+  };
+  double score_view(const View& view, const Eigen::Vector3d& centre_m, const Sphere& s) const;
+
+  std::array<View, 2> views_;
+  std::vector<Sphere> spheres_;
+  std::vector<float> inner_xy_, outer_xy_;  // offsets on the unit disc, interleaved x, y
+  float inv_inner_ = 1.0f, inv_outer_ = 1.0f;
+};
+
+}  // namespace rovctl::estimator

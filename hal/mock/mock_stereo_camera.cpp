@@ -1,0 +1,49 @@
+// Rendered stereo frames from the simulated world's past pose, with latency, noise and faults.
+#include "hal/mock/mock_stereo_camera.hpp"
+
+#include <cmath>
+
+namespace rovctl::hal::mock {
+
+MockStereoCamera::MockStereoCamera(const SimulatedWorld& world, const StereoRig& rig,
+                                   const MarkerModel& marker, const CameraSimParams& params,
+                                   const FaultInjection& faults, std::uint64_t noise_seed)
+    : world_(world),
+      rig_(rig),
+      left_(rig.left, marker, params.render),
+      right_(rig.right, marker, params.render),
+      latency_(std::llround(params.latency_ms * 1e6)),
+      faults_(faults),
+      noise_seed_(noise_seed),
+      drop_rng_(noise_seed ^ 0x5DEECE66Dull) {}
+
+bool MockStereoCamera::open(std::string& error) {
+  if (FaultInjection::active(faults_.camera_lost_at_s, world_.time())) {
+    error = "mock stereo camera: device lost (injected fault sim.faults.camera_lost_at_s)";
+    return false;
+  }
+  open_ = true;
+  return true;
+}
+
+GrabStatus MockStereoCamera::grab(StereoFrame& frame) {
+  const std::chrono::nanoseconds now = world_.time();
+  if (!open_ || FaultInjection::active(faults_.camera_lost_at_s, now)) {
+    return GrabStatus::device_lost;
+  }
+  if (faults_.camera_timeout_probability > 0.0 &&
+      unit_(drop_rng_) < faults_.camera_timeout_probability) {
+    return GrabStatus::timeout;
+  }
+  const std::chrono::nanoseconds capture = now - latency_;
+  last_truth_ = world_.T_cl_marker_at(capture);
+  // A fresh noise pattern per frame, reproducible from the trial's seed.
+  const std::uint64_t seed = noise_seed_ ^ (0x9E3779B97F4A7C15ull * (sequence_ + 1));
+  render_stereo(left_, right_, rig_, last_truth_, seed, frame.left_bgr, frame.right_bgr);
+  frame.left_stamp = capture;
+  frame.right_stamp = capture;
+  frame.sequence = sequence_++;
+  return GrabStatus::ok;
+}
+
+}  // namespace rovctl::hal::mock

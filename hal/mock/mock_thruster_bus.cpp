@@ -1,0 +1,81 @@
+// The simulated ESC bus: delivery into the thruster model, arming and injected bus faults.
+#include "hal/mock/mock_thruster_bus.hpp"
+
+#include <cmath>
+
+namespace rovctl::hal::mock {
+
+namespace {
+// T200 at 16 V: about 3800 rpm at full thrust; thrust grows with the square of the speed.
+constexpr double kFullThrustRpm = 3800.0;
+}  // namespace
+
+MockThrusterBus::MockThrusterBus(SimulatedWorld& world, const FaultInjection& faults)
+    : world_(world), faults_(faults) {}
+
+bool MockThrusterBus::timed_out() const {
+  return FaultInjection::active(faults_.bus_timeout_at_s, world_.time());
+}
+
+bool MockThrusterBus::open(std::string& error) {
+  if (faults_.bus_open_fails) {
+    error = "mock thruster bus: open failed (injected fault sim.faults.bus_open_fails)";
+    return false;
+  }
+  open_ = true;
+  armed_ = false;
+  world_.neutral_thrusters();
+  return true;
+}
+
+BusStatus MockThrusterBus::arm(bool armed) {
+  if (!open_ || timed_out()) return BusStatus::fault;
+  if (!armed) world_.neutral_thrusters();
+  armed_ = armed;
+  return BusStatus::ok;
+}
+
+BusStatus MockThrusterBus::write(const ThrusterCommand& command) {
+  last_command_ = command;
+  ++write_count_;
+  if (!open_ || timed_out()) return BusStatus::fault;  // nothing arrives; the ESCs time out
+  if (!armed_) {
+    world_.neutral_thrusters();
+    return BusStatus::ok;
+  }
+  ThrusterCommand delivered = command;
+  bool finite = true;
+  for (std::size_t i = 0; i < delivered.count && i < kMaxThrusters; ++i) {
+    if (!std::isfinite(delivered.thrust_fraction[i])) {
+      delivered.thrust_fraction[i] = 0.0;
+      finite = false;
+    }
+  }
+  if (!finite) ++non_finite_count_;
+  world_.command_thrusters(delivered);
+  return finite ? BusStatus::ok : BusStatus::degraded;
+}
+
+BusStatus MockThrusterBus::read(ThrusterTelemetry& telemetry) {
+  telemetry.valid = false;
+  if (!open_ || timed_out()) return BusStatus::fault;
+  const ThrusterModel& model = world_.thrusters();
+  telemetry.count = model.count();
+  for (std::size_t i = 0; i < model.count(); ++i) {
+    const double full =
+        model.thrust_n(i) >= 0.0 ? model.static_thrust_n(i, 1.0) : -model.static_thrust_n(i, -1.0);
+    const double ratio = full > 0.0 ? std::abs(model.thrust_n(i)) / full : 0.0;
+    telemetry.speed_rpm[i] = std::copysign(kFullThrustRpm * std::sqrt(ratio), model.thrust_n(i));
+    telemetry.fault_flags[i] = 0;
+  }
+  telemetry.valid = true;
+  return BusStatus::ok;
+}
+
+void MockThrusterBus::close() {
+  if (open_ && !timed_out()) world_.neutral_thrusters();
+  armed_ = false;
+  open_ = false;
+}
+
+}  // namespace rovctl::hal::mock

@@ -1,0 +1,57 @@
+// Renders the three-sphere marker as one camera of the rig sees it: shaded spheres with specular
+// highlights over a background gradient, optional water attenuation and sensor noise.
+#pragma once
+
+#include <Eigen/Geometry>
+#include <cstdint>
+#include <opencv2/core/mat.hpp>
+#include <vector>
+
+#include "hal/camera_model.hpp"
+#include "hal/marker_model.hpp"
+#include "hal/parameters.hpp"
+#include "hal/stereo_rig.hpp"
+
+namespace rovctl::hal::mock {
+
+struct RenderOptions {
+  Eigen::Vector3d background_top_rgb{0.20, 0.32, 0.34};  // linear RGB 0..1, a vertical gradient
+  Eigen::Vector3d background_bottom_rgb{0.06, 0.11, 0.12};
+  double water_attenuation_per_m = 0.0;  // 0 = clear; >0 attenuates red most (blue-green cast)
+  double noise_sigma = 2.0;              // sensor noise, std dev in 8-bit grey levels
+  double ambient = 0.35;                 // ambient light fraction
+  bool highlights = true;                // specular highlights on the spheres
+};
+
+void describe(ParamVisitor& v, RenderOptions& options);
+
+class SceneRenderer {
+ public:
+  SceneRenderer(const CameraModel& camera, const MarkerModel& marker, const RenderOptions& options);
+  // Renders one view into out_bgr (CV_8UC3, camera size). No heap allocation when out_bgr already
+  // has the right size and type. Deterministic for a given noise_seed.
+  void render(const Eigen::Isometry3d& T_cam_marker, std::uint64_t noise_seed,
+              cv::Mat& out_bgr) const;
+
+  const CameraModel& camera() const { return camera_; }
+
+ private:
+  void shade_sphere(const MarkerSphere& sphere, const Eigen::Vector3d& centre_cam_m,
+                    cv::Mat& out_bgr) const;
+
+  CameraModel camera_;
+  MarkerModel marker_;
+  RenderOptions options_;
+  std::vector<Eigen::Vector3f> rays_;   // per pixel: the unit-z ray (x, y, 1) through its centre
+  cv::Mat background_bgr_;              // CV_8UC3, the gradient
+  cv::Mat noise_plus_, noise_minus_;    // CV_8UC3 noise texture split into its +/- parts
+  std::vector<std::uint8_t> to_srgb8_;  // linear [0, 1] in 4096 steps -> 8-bit sRGB
+  Eigen::Vector3d water_rgb_;           // veiling light colour (mean of the background)
+};
+
+// Both views of a rig: T_cr_marker = rig.T_cr_cl * T_cl_marker.
+void render_stereo(const SceneRenderer& left, const SceneRenderer& right, const StereoRig& rig,
+                   const Eigen::Isometry3d& T_cl_marker, std::uint64_t noise_seed,
+                   cv::Mat& left_bgr, cv::Mat& right_bgr);
+
+}  // namespace rovctl::hal::mock

@@ -1,0 +1,97 @@
+// The `sim` config section: everything the simulated world and the mock HAL are made of —
+// dynamics, thrusters, current, where the station stands, cameras, sensors, integration step,
+// trial randomisation and fault injection.
+#pragma once
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+
+#include "hal/mock/fault_injection.hpp"
+#include "hal/mock/scene_renderer.hpp"
+#include "hal/mock/thruster_model.hpp"
+#include "hal/mock/vehicle_dynamics.hpp"
+#include "hal/mock/water_current.hpp"
+#include "hal/parameters.hpp"
+
+namespace rovctl::hal::mock {
+
+// Where the docking station stands in the world (NED). The marker frame's +z, the docking axis,
+// points horizontally along `docking_heading_deg` (0 = north): the vehicle docks heading that way,
+// so with the defaults it starts south of the station and approaches heading north. Marker +x
+// then points to the vehicle's starboard and +y down, as the camera's axes do when aligned.
+struct StationPlacement {
+  Eigen::Vector3d marker_position_world_m{5.0, 0.0, 2.0};
+  double docking_heading_deg = 0.0;
+};
+
+void describe(ParamVisitor& v, StationPlacement& p);
+
+// The marker's pose in the world implied by the placement.
+Eigen::Isometry3d station_T_world_marker(const StationPlacement& p);
+
+// When the probe counts as docked, and how the station pushes back on it.
+struct ContactParams {
+  // The socket's capture funnel: the probe tip must be within this of the socket axis.
+  double lateral_tolerance_m = 0.03;
+  // And the body x axis within this of the docking axis.
+  double angle_tolerance_deg = 10.0;
+  // Hold the vehicle once docked (the latch closes), ending the motion.
+  bool latch_on_dock = true;
+  // Penalty contact between the probe tip and the station face / socket bottom.
+  double stiffness_npm = 3000.0;
+  double damping_nspm = 150.0;
+};
+
+void describe(ParamVisitor& v, ContactParams& p);
+
+struct CameraSimParams {
+  // Exposure to delivery: the frame grab() returns shows the world this long ago.
+  double latency_ms = 40.0;
+  RenderOptions render;  // render.noise_sigma is replaced by each trial's image noise
+};
+
+void describe(ParamVisitor& v, CameraSimParams& p);
+
+struct SensorSimParams {
+  double depth_noise_m = 0.005;     // pressure sensor (Bar30 resolution ~2 mm)
+  double attitude_noise_deg = 0.5;  // AHRS attitude noise, per axis
+  double gyro_noise_radps = 0.005;  // rate noise, per axis
+};
+
+void describe(ParamVisitor& v, SensorSimParams& p);
+
+// Randomised initial conditions for the docking trials (issue: 0.6-1.5 m from the station, the
+// marker in view of at least one camera or not at all, current up to 0.1 m/s, image noise).
+struct TrialRandomisation {
+  double distance_min_m = 0.6;  // left camera to marker centre, at the start
+  double distance_max_m = 1.5;
+  double bearing_max_deg = 20.0;         // camera position off the docking axis, horizontally
+  double elevation_max_deg = 10.0;       // and vertically
+  double heading_offset_max_deg = 40.0;  // vehicle heading off the bearing to the marker
+  double roll_pitch_max_deg = 3.0;
+  double out_of_view_fraction = 0.0;   // share of trials that start with the marker in no view
+  double visibility_margin_px = 10.0;  // a sphere counts as in view this far inside the border
+  double current_max_mps = 0.1;        // horizontal current speed, uniform in [0, max]
+  double noise_sigma_min = 1.0;        // image noise, grey levels, uniform in [min, max]
+  double noise_sigma_max = 5.0;
+};
+
+void describe(ParamVisitor& v, TrialRandomisation& p);
+
+struct SimParams {
+  double integration_step_ms = 2.0;  // physics step, finer than the control tick
+  bool realtime = false;             // pace the simulation by the wall clock (hardware in the loop)
+  VehicleDynamicsParams dynamics;
+  ThrusterModelParams thrusters;
+  WaterCurrentParams current;
+  StationPlacement station;
+  ContactParams contact;
+  CameraSimParams camera;
+  SensorSimParams sensors;
+  TrialRandomisation trials;
+  FaultInjection faults;
+};
+
+void describe(ParamVisitor& v, SimParams& p);
+
+}  // namespace rovctl::hal::mock

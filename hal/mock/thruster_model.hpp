@@ -1,0 +1,66 @@
+// The thrusters as the simulated vehicle feels them: deadband, saturation, asymmetric forward and
+// reverse thrust, first-order lag, and the ESCs' own failsafe when commands stop arriving.
+#pragma once
+
+#include <Eigen/Core>
+#include <array>
+#include <cstddef>
+
+#include "hal/parameters.hpp"
+#include "hal/thruster_bus.hpp"
+#include "hal/thruster_layout.hpp"
+
+namespace rovctl::hal::mock {
+
+struct ThrusterModelParams {
+  // T200 + Basic ESC: the thrust follows the command with roughly 0.1 s of motor spin-up.
+  double time_constant_s = 0.10;
+  // ESC deadband around neutral (Basic ESC: +-25 us of a +-400 us range = 0.0625).
+  double deadband = 0.0625;
+  // Thrust ~ (fraction past the deadband)^exponent; 1 is linear (what the allocation assumes).
+  double curve_exponent = 1.0;
+  // The ESCs go neutral when no command has arrived for this long (bus loss, application hang).
+  double command_timeout_s = 0.25;
+};
+
+void describe(ParamVisitor& v, ThrusterModelParams& p);
+
+class ThrusterModel {
+ public:
+  ThrusterModel(const ThrusterLayout& layout, const ThrusterModelParams& params);
+
+  // New commands (fractions in [-1, 1], by bus channel) received at `time_s`. Non-finite
+  // commands are taken as neutral, as an ESC rejects a malformed frame.
+  void command(const ThrusterCommand& cmd, double time_s);
+  // All thrusters neutral at once (disarm).
+  void neutral(double time_s);
+
+  // Advances the thrust of each thruster by `dt_s` towards its (possibly timed-out) command.
+  void step(double time_s, double dt_s);
+
+  // Steady-state thrust [N] for a command fraction on thruster i: deadband, saturation and the
+  // forward/reverse asymmetry.
+  double static_thrust_n(std::size_t i, double fraction) const;
+
+  // The thrusters' current wrench on the body: [force; moment about the body origin].
+  Eigen::Matrix<double, 6, 1> wrench_body() const;
+
+  std::size_t count() const { return count_; }
+  double thrust_n(std::size_t i) const { return thrust_n_[i]; }
+  double commanded_fraction(std::size_t i) const { return command_[i]; }
+  bool timed_out(double time_s) const { return time_s - last_command_s_ > p_.command_timeout_s; }
+  void reset();
+
+ private:
+  ThrusterModelParams p_;
+  std::size_t count_ = 0;
+  Eigen::Matrix<double, 6, kMaxThrusters> config_ = Eigen::Matrix<double, 6, kMaxThrusters>::Zero();
+  std::array<double, kMaxThrusters> max_forward_n_{};
+  std::array<double, kMaxThrusters> max_reverse_n_{};
+  std::array<int, kMaxThrusters> channel_{};
+  std::array<double, kMaxThrusters> command_{};   // by thruster index
+  std::array<double, kMaxThrusters> thrust_n_{};  // actual thrust now, by thruster index
+  double last_command_s_ = -1e9;
+};
+
+}  // namespace rovctl::hal::mock

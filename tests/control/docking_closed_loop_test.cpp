@@ -1,0 +1,174 @@
+// The control stack alone in the closed loop: mission + servo + allocation driving the mock HAL's
+// 6-DOF BlueROV2 dynamics and thruster model in a current, with the pose "estimate" taken from the
+// truth plus noise and a field-of-view check (no images, no RM-GA). Checks that control can meet
+// the docking targets when the estimate is good; the full loop is `rovctl sim`.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <random>
+
+#include "control/control_allocation_pseudo_inverse.hpp"
+#include "control/mission.hpp"
+#include "control/pd_visual_servo.hpp"
+#include "hal/docking_station.hpp"
+#include "hal/mock/thruster_model.hpp"
+#include "hal/mock/vehicle_dynamics.hpp"
+#include "hal/vehicle_geometry.hpp"
+
+namespace rovctl::control {
+namespace {
+
+using namespace std::chrono_literals;
+
+struct TrialResult {
+  bool docked = false;
+  double lateral_m = 1.0;  // probe tip off the socket axis at contact
+  double yaw_deg = 180.0;
+  double time_s = 0.0;
+  int aborts = 0;
+};
+
+TrialResult run_trial(std::uint64_t seed, double current_mps) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> uni(-1.0, 1.0);
+  std::normal_distribution<double> gauss(0.0, 1.0);
+
+  const hal::VehicleGeometry geometry;
+  const hal::DockingStation station;
+  const Eigen::Isometry3d T_body_cl = geometry.T_body_cl();
+  const Eigen::Isometry3d docked =
+      hal::docked_T_cl_marker(T_body_cl, geometry.probe_tip_body_m, station);
+  const ControlParams control;
+  const MissionParams mission_params;
+  const ControlAllocator allocator(geometry.thrusters, control.allocation);
+  PdVisualServo servo(control.servo, T_body_cl);
+  Mission mission(mission_params, T_body_cl, docked, geometry.probe_tip_body_m);
+
+  // Station: marker 2 m deep, its docking axis pointing north.
+  Eigen::Isometry3d T_world_marker = Eigen::Isometry3d::Identity();
+  T_world_marker.linear() << 0, 0, 1, 1, 0, 0, 0, 1, 0;  // marker x = east, y = down, z = north
+  T_world_marker.translation() = Eigen::Vector3d(0, 0, 2.0);
+  const Eigen::Isometry3d T_world_body_docked = T_world_marker * (T_body_cl * docked).inverse();
+
+  const hal::mock::VehicleDynamics dynamics{hal::mock::VehicleDynamicsParams{}};
+  hal::mock::ThrusterModel thrusters(geometry.thrusters, hal::mock::ThrusterModelParams{});
+  hal::mock::VehicleState s;
+  s.position_world_m = T_world_body_docked.translation() +
+                       Eigen::Vector3d(-2.5 + 0.5 * uni(rng), 0.4 * uni(rng), 0.2 * uni(rng));
+  s.q_world_body = Eigen::Quaterniond(Eigen::AngleAxisd(0.3 * uni(rng), Eigen::Vector3d::UnitZ()));
+  const double heading = M_PI * uni(rng);
+  const Eigen::Vector3d current(current_mps * std::cos(heading), current_mps * std::sin(heading),
+                                0.0);
+
+  const Eigen::Vector3d socket = station.socket_marker_m;
+  const double dt_control = 0.033;
+  const int substeps = 6;
+  TrialResult r;
+  const bool trace = std::getenv("ROVCTL_TRACE") != nullptr;
+  std::chrono::nanoseconds now{0};
+  for (int tick = 0; tick < static_cast<int>(180.0 / dt_control); ++tick) {
+    now += 33ms;
+    const double t = tick * dt_control;
+    const Eigen::Isometry3d T_world_body = s.T_world_body();
+    // Contact: the probe tip past the socket mouth by the capture depth.
+    const Eigen::Vector3d tip =
+        T_world_marker.inverse() * (T_world_body * geometry.probe_tip_body_m);
+    const bool contact = tip.z() >= socket.z() + station.capture_depth_m;
+    if (contact && r.time_s == 0.0) {
+      r.time_s = t;
+      r.lateral_m = (tip - socket).head<2>().norm();
+      const Eigen::Matrix3d R_err =
+          T_world_body.linear().transpose() * T_world_body_docked.linear();
+      const Eigen::Vector3d x = R_err.col(0);
+      r.yaw_deg = std::abs(std::atan2(x.y(), x.x())) * 180.0 / M_PI;
+    }
+
+    // The estimate: truth plus noise growing with range, seen when the marker is in view.
+    Eigen::Isometry3d T_cl_marker = (T_world_body * T_body_cl).inverse() * T_world_marker;
+    const double range = T_cl_marker.translation().norm();
+    const Eigen::Vector3d p = T_cl_marker.translation();
+    const bool in_view =
+        p.z() > 0.15 && std::abs(p.x() / p.z()) < 0.55 && std::abs(p.y() / p.z()) < 0.42;
+    T_cl_marker.translation() +=
+        (0.001 + 0.004 * range) * Eigen::Vector3d(gauss(rng), gauss(rng), 2.0 * gauss(rng));
+    const Eigen::Vector3d rot_noise =
+        (0.3 * M_PI / 180.0) * Eigen::Vector3d(gauss(rng), gauss(rng), gauss(rng));
+    T_cl_marker.linear() =
+        T_cl_marker.linear() *
+        Eigen::AngleAxisd(rot_noise.norm(), rot_noise.normalized()).toRotationMatrix();
+
+    MissionInput in;
+    in.now = now;
+    in.recognised = in_view;
+    in.fitness = in_view ? 0.9 : 0.1;
+    in.T_cl_marker = T_cl_marker;
+    in.contact = contact;
+    const MissionOutput out = mission.update(in);
+    if (trace) {
+      MissionEvent e;
+      while (mission.pop_event(e)) {
+        std::printf("  %6.2f s %s -> %s (%s) lat %.3f ax %.3f yaw %.3f tip %.3f %.3f %.3f\n", t,
+                    to_string(e.from), to_string(e.to), e.reason, out.lateral_error_m,
+                    out.axial_error_m, out.yaw_error_rad, tip.x(), tip.y(), tip.z());
+      }
+      if (tick % 5 == 0) {
+        const Eigen::Vector3d rpy = s.q_world_body.toRotationMatrix().eulerAngles(2, 1, 0);
+        std::printf(
+            "  %6.2f s %-8s seen %d lat %.3f ax %.3f yaw %.3f p_cl %.2f %.2f %.2f "
+            "depth %.2f ypr %.2f %.2f %.2f\n",
+            t, to_string(out.state), in_view, out.lateral_error_m, out.axial_error_m,
+            out.yaw_error_rad, p.x(), p.y(), p.z(), s.position_world_m.z(), rpy[0], rpy[1], rpy[2]);
+      }
+    }
+    if (out.state == MissionState::docked || out.state == MissionState::failed) break;
+
+    Wrench w = servo.hold_wrench_body();
+    if (out.servo_active) {
+      if (out.servo_restart) servo.reset();
+      w = servo.update(T_cl_marker, out.T_cl_marker_desired, 33ms);
+    } else if (out.use_override) {
+      w += out.wrench_override_body;
+    }
+    hal::ThrusterCommand cmd;
+    if (out.thrusters_enabled) {
+      servo.set_allocation_fraction(allocator.allocate(w, cmd));
+    } else {
+      allocator.neutral(cmd);
+    }
+    thrusters.command(cmd, t);
+    for (int k = 0; k < substeps; ++k) {
+      const double ts = t + k * dt_control / substeps;
+      thrusters.step(ts, dt_control / substeps);
+      dynamics.step(s, thrusters.wrench_body(), current, Eigen::Vector3d::Zero(),
+                    dt_control / substeps);
+    }
+  }
+  r.docked = mission.state() == MissionState::docked;
+  r.aborts = mission.aborts();
+  return r;
+}
+
+TEST(DockingClosedLoop, DocksWithinTolerancesInCurrent) {
+  const int trials = std::getenv("ROVCTL_TRIALS") ? std::atoi(std::getenv("ROVCTL_TRIALS")) : 20;
+  int success = 0;
+  double worst_lateral = 0.0, worst_yaw = 0.0;
+  for (int i = 0; i < trials; ++i) {
+    const TrialResult r = run_trial(1000 + static_cast<std::uint64_t>(i), 0.1);
+    const bool ok = r.docked && r.lateral_m <= 0.010 && r.yaw_deg <= 3.0;
+    success += ok ? 1 : 0;
+    if (r.docked) {
+      worst_lateral = std::max(worst_lateral, r.lateral_m);
+      worst_yaw = std::max(worst_yaw, r.yaw_deg);
+    }
+    std::printf("trial %2d: %s lateral %.1f mm yaw %.2f deg t %.1f s aborts %d\n", i,
+                ok ? "ok  " : "FAIL", r.lateral_m * 1e3, r.yaw_deg, r.time_s, r.aborts);
+  }
+  std::printf("success %d/%d, worst lateral %.1f mm, worst yaw %.2f deg\n", success, trials,
+              worst_lateral * 1e3, worst_yaw);
+  EXPECT_GE(success, 19);
+}
+
+}  // namespace
+}  // namespace rovctl::control

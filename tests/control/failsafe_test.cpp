@@ -1,0 +1,141 @@
+// Failsafe: each monitor trips into the configured safe state, latches, and is logged once.
+#include "control/failsafe.hpp"
+
+#include <gtest/gtest.h>
+
+#include <limits>
+
+namespace rovctl::control {
+namespace {
+
+using namespace std::chrono_literals;
+
+FailsafeInput healthy(std::chrono::nanoseconds now) {
+  FailsafeInput in;
+  in.now = now;
+  in.fitness = 0.8;
+  return in;
+}
+
+TEST(Failsafe, HealthyStaysNone) {
+  Failsafe fs(FailsafeParams{});
+  for (int k = 0; k < 100; ++k) EXPECT_EQ(fs.update(healthy(k * 33ms)), SafeAction::none);
+  FailsafeEvent e;
+  EXPECT_FALSE(fs.pop_event(e));
+}
+
+TEST(Failsafe, CameraLostTripsAtOnceAndLatches) {
+  Failsafe fs(FailsafeParams{});
+  FailsafeInput in = healthy(1s);
+  in.grab = hal::GrabStatus::device_lost;
+  EXPECT_EQ(fs.update(in), SafeAction::disarm);
+  EXPECT_EQ(fs.cause(), FailsafeCause::camera_lost);
+  EXPECT_EQ(fs.update(healthy(2s)), SafeAction::disarm);  // latched
+  FailsafeEvent e;
+  ASSERT_TRUE(fs.pop_event(e));
+  EXPECT_EQ(e.cause, FailsafeCause::camera_lost);
+  EXPECT_EQ(e.time, 1s);
+  EXPECT_FALSE(fs.pop_event(e));  // logged once
+  fs.reset(3s);
+  EXPECT_EQ(fs.update(healthy(3s)), SafeAction::none);
+}
+
+TEST(Failsafe, CameraTimeoutsTripAfterTheAllowance) {
+  FailsafeParams p;
+  p.camera_timeout_ticks = 3;
+  Failsafe fs(p);
+  FailsafeInput in = healthy(0s);
+  in.grab = hal::GrabStatus::timeout;
+  for (int k = 0; k < 3; ++k) EXPECT_EQ(fs.update(in), SafeAction::none);
+  EXPECT_EQ(fs.update(healthy(0s)), SafeAction::none);  // a good frame resets the count
+  for (int k = 0; k < 3; ++k) EXPECT_EQ(fs.update(in), SafeAction::none);
+  EXPECT_EQ(fs.update(in), SafeAction::disarm);
+  EXPECT_EQ(fs.cause(), FailsafeCause::camera_lost);
+}
+
+TEST(Failsafe, BusFaultAndLongDegradation) {
+  {
+    Failsafe fs(FailsafeParams{});
+    FailsafeInput in = healthy(0s);
+    in.bus = hal::BusStatus::fault;
+    EXPECT_EQ(fs.update(in), SafeAction::disarm);
+    EXPECT_EQ(fs.cause(), FailsafeCause::bus_fault);
+  }
+  {
+    FailsafeParams p;
+    p.bus_degraded_ticks = 2;
+    Failsafe fs(p);
+    FailsafeInput in = healthy(0s);
+    in.bus = hal::BusStatus::degraded;
+    EXPECT_EQ(fs.update(in), SafeAction::none);
+    EXPECT_EQ(fs.update(in), SafeAction::none);
+    EXPECT_EQ(fs.update(in), SafeAction::disarm);
+    EXPECT_EQ(fs.cause(), FailsafeCause::bus_fault);
+  }
+}
+
+TEST(Failsafe, NaNInTheEstimateOrTheWrench) {
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  {
+    Failsafe fs(FailsafeParams{});
+    FailsafeInput in = healthy(0s);
+    in.T_cl_marker.translation().y() = nan;
+    EXPECT_EQ(fs.update(in), SafeAction::disarm);
+    EXPECT_EQ(fs.cause(), FailsafeCause::estimate_not_finite);
+  }
+  {
+    Failsafe fs(FailsafeParams{});
+    FailsafeInput in = healthy(0s);
+    in.fitness = nan;
+    fs.update(in);
+    EXPECT_EQ(fs.cause(), FailsafeCause::estimate_not_finite);
+  }
+  {
+    FailsafeParams p;
+    p.action = "neutral";
+    Failsafe fs(p);
+    FailsafeInput in = healthy(0s);
+    in.wrench_body[5] = std::numeric_limits<double>::infinity();
+    EXPECT_EQ(fs.update(in), SafeAction::neutral);
+    EXPECT_EQ(fs.cause(), FailsafeCause::wrench_not_finite);
+  }
+}
+
+TEST(Failsafe, MissionLimits) {
+  {
+    Failsafe fs(FailsafeParams{});
+    FailsafeInput in = healthy(0s);
+    in.mission = MissionState::failed;
+    EXPECT_EQ(fs.update(in), SafeAction::disarm);
+    EXPECT_EQ(fs.cause(), FailsafeCause::mission_failed);
+  }
+  {
+    FailsafeParams p;
+    p.max_mission_time_s = 10.0;
+    Failsafe fs(p);
+    EXPECT_EQ(fs.update(healthy(5s)), SafeAction::none);  // the clock starts here
+    EXPECT_EQ(fs.update(healthy(15s)), SafeAction::none);
+    EXPECT_EQ(fs.update(healthy(15s + 1ms)), SafeAction::disarm);
+    EXPECT_EQ(fs.cause(), FailsafeCause::mission_time);
+  }
+}
+
+TEST(Failsafe, FirstCauseWins) {
+  Failsafe fs(FailsafeParams{});
+  FailsafeInput in = healthy(0s);
+  in.bus = hal::BusStatus::fault;
+  fs.update(in);
+  in.grab = hal::GrabStatus::device_lost;
+  fs.update(in);
+  EXPECT_EQ(fs.cause(), FailsafeCause::bus_fault);
+  EXPECT_STREQ(to_string(fs.cause()), "thruster bus fault");
+}
+
+TEST(Failsafe, RejectsUnknownAction) {
+  FailsafeParams p;
+  p.action = "explode";
+  EXPECT_THROW(Failsafe{p}, std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace rovctl::control

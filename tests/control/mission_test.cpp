@@ -1,0 +1,303 @@
+// Mission: the nominal SEARCH -> APPROACH -> ALIGN -> DOCK -> DOCKED sequence, loss of the marker
+// mid-approach, the ALIGN hold, DOCK limits and the blind push, retries, the event queue.
+#include "control/mission.hpp"
+
+#include <gtest/gtest.h>
+
+#include <string>
+#include <vector>
+
+#include "hal/docking_station.hpp"
+#include "hal/vehicle_geometry.hpp"
+
+namespace rovctl::control {
+namespace {
+
+using namespace std::chrono_literals;
+
+class MissionTest : public ::testing::Test {
+ protected:
+  hal::VehicleGeometry geometry;
+  Eigen::Isometry3d T_body_cl = geometry.T_body_cl();
+  Eigen::Isometry3d docked =
+      hal::docked_T_cl_marker(T_body_cl, geometry.probe_tip_body_m, hal::DockingStation{});
+  MissionParams params;
+  std::chrono::nanoseconds now{0};
+
+  Mission make() { return Mission(params, T_body_cl, docked, geometry.probe_tip_body_m); }
+
+  // The marker as seen when the docked body frame lies at `d` (body axes) from the vehicle:
+  // d.x() > 0 means the vehicle is short of docked by that much.
+  Eigen::Isometry3d seen_at(const Eigen::Vector3d& d, double yaw = 0.0) const {
+    const Eigen::Isometry3d T =
+        Eigen::Translation3d(d) * Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ());
+    return T_body_cl.inverse() * T * T_body_cl * docked;
+  }
+  MissionOutput tick(Mission& m, bool recognised, const Eigen::Isometry3d& T, bool contact = false,
+                     double fitness = 0.9) {
+    now += 33ms;
+    MissionInput in;
+    in.now = now;
+    in.recognised = recognised;
+    in.fitness = fitness;
+    in.T_cl_marker = T;
+    in.contact = contact;
+    return m.update(in);
+  }
+  MissionOutput blind(Mission& m) { return tick(m, false, Eigen::Isometry3d::Identity()); }
+  static std::vector<std::string> drain(Mission& m) {
+    std::vector<std::string> out;
+    MissionEvent e;
+    while (m.pop_event(e)) {
+      out.push_back(std::string(to_string(e.from)) + ">" + to_string(e.to) + ":" + e.reason);
+    }
+    return out;
+  }
+  // Drives a fresh mission to APPROACH.
+  void to_approach(Mission& m) {
+    for (int k = 0; k < params.acquire_frames; ++k) tick(m, true, seen_at({2.0, 0.2, 0.1}));
+    ASSERT_EQ(m.state(), MissionState::approach);
+  }
+  void to_dock(Mission& m) {
+    to_approach(m);
+    tick(m, true, seen_at({params.standoff_m, 0, 0}));
+    ASSERT_EQ(m.state(), MissionState::align);
+    for (int k = 0; k < params.align_hold_frames; ++k)
+      tick(m, true, seen_at({params.standoff_m, 0, 0}));
+    ASSERT_EQ(m.state(), MissionState::dock);
+  }
+};
+
+TEST_F(MissionTest, NominalSequenceToDocked) {
+  Mission m = make();
+  // SEARCH: nothing seen, slow yaw scan, servo off.
+  MissionOutput out;
+  for (int k = 0; k < 10; ++k) out = blind(m);
+  EXPECT_EQ(out.state, MissionState::search);
+  EXPECT_TRUE(out.use_override);
+  EXPECT_FALSE(out.servo_active);
+  EXPECT_DOUBLE_EQ(out.wrench_override_body[5], params.search_yaw_moment_nm);
+  EXPECT_TRUE(out.thrusters_enabled);
+
+  // Seen for acquire_frames frames: APPROACH, servo (re)started on the stand-off pose.
+  for (int k = 0; k < params.acquire_frames; ++k) out = tick(m, true, seen_at({2.0, 0.2, 0.1}));
+  EXPECT_EQ(out.state, MissionState::approach);
+  EXPECT_TRUE(out.servo_active);
+  EXPECT_TRUE(out.servo_restart);
+  EXPECT_FALSE(out.use_override);
+  EXPECT_TRUE(out.T_cl_marker_desired.isApprox(m.standoff_T_cl_marker()));
+  EXPECT_TRUE(out.errors_valid);
+  EXPECT_NEAR(out.axial_error_m, -2.0, 1e-9);
+  EXPECT_NEAR(out.lateral_error_m, std::hypot(0.2, 0.1), 1e-9);
+  out = tick(m, true, seen_at({1.0, 0.0, 0.0}));
+  EXPECT_FALSE(out.servo_restart);
+
+  // At the stand-off: ALIGN, then DOCK after align_hold_frames frames within the thresholds.
+  out = tick(m, true, seen_at({params.standoff_m + 0.01, 0.003, 0.0}));
+  EXPECT_EQ(out.state, MissionState::align);
+  EXPECT_FALSE(out.servo_restart);  // the servo keeps its integral through the hand-over
+  for (int k = 1; k < params.align_hold_frames; ++k) {
+    out = tick(m, true, seen_at({params.standoff_m, 0.002, 0.0}, 0.01));
+  }
+  EXPECT_EQ(out.state, MissionState::align);
+  out = tick(m, true, seen_at({params.standoff_m, 0.002, 0.0}, 0.01));
+  EXPECT_EQ(out.state, MissionState::dock);
+
+  // DOCK: the set-point advances along the docking axis at dock_speed_mps.
+  const Eigen::Vector3d p0 = out.T_cl_marker_desired.translation();
+  for (int k = 0; k < 30; ++k) out = tick(m, true, seen_at({0.4, 0, 0}));
+  const double moved = (p0 - out.T_cl_marker_desired.translation()).norm();
+  EXPECT_NEAR(moved, params.dock_speed_mps * 30 * 0.033, 1e-6);
+  EXPECT_TRUE(out.servo_active);
+
+  // Contact: DOCKED, thrusters neutral.
+  for (int k = 0; k < params.contact_frames; ++k) out = tick(m, true, seen_at({0.0, 0, 0}), true);
+  EXPECT_EQ(out.state, MissionState::docked);
+  EXPECT_FALSE(out.thrusters_enabled);
+  EXPECT_FALSE(out.servo_active);
+
+  const std::vector<std::string> expected = {"search>approach:marker recognised",
+                                             "approach>align:stand-off reached",
+                                             "align>dock:aligned", "dock>docked:contact"};
+  EXPECT_EQ(drain(m), expected);
+  EXPECT_EQ(m.aborts(), 0);
+}
+
+TEST_F(MissionTest, MarkerLostMidApproachAbortsBacksOffAndSearchesAgain) {
+  Mission m = make();
+  to_approach(m);
+  tick(m, true, seen_at({1.5, 0.1, 0.0}));
+  // A brief loss holds (no servo, zero override) without aborting.
+  MissionOutput out;
+  for (int k = 0; k < params.lost_frames - 1; ++k) out = blind(m);
+  EXPECT_EQ(out.state, MissionState::approach);
+  EXPECT_FALSE(out.servo_active);
+  EXPECT_TRUE(out.use_override);
+  EXPECT_TRUE(out.wrench_override_body.isZero());
+  out = blind(m);
+  EXPECT_EQ(out.state, MissionState::abort);
+  EXPECT_EQ(m.aborts(), 1);
+  EXPECT_TRUE(out.use_override);
+  EXPECT_DOUBLE_EQ(out.wrench_override_body[0], -params.abort_backoff_force_n);
+  // Backs off for abort_backoff_s, even if the marker reappears, then searches again.
+  const auto t_abort = now;
+  while (now - t_abort < std::chrono::duration<double>(params.abort_backoff_s) - 33ms) {
+    out = tick(m, true, seen_at({1.5, 0.0, 0.0}));
+    ASSERT_EQ(out.state, MissionState::abort);
+  }
+  out = blind(m);
+  EXPECT_EQ(out.state, MissionState::search);
+  const std::vector<std::string> expected = {
+      "search>approach:marker recognised", "approach>abort:marker lost", "abort>search:backed off"};
+  EXPECT_EQ(drain(m), expected);
+  // And a second acquisition restarts the servo.
+  for (int k = 0; k < params.acquire_frames; ++k) out = tick(m, true, seen_at({1.0, 0, 0}));
+  EXPECT_EQ(out.state, MissionState::approach);
+  EXPECT_TRUE(out.servo_restart);
+}
+
+TEST_F(MissionTest, BriefLossDoesNotRestartTheServo) {
+  Mission m = make();
+  to_approach(m);
+  blind(m);
+  blind(m);
+  const MissionOutput out = tick(m, true, seen_at({1.0, 0, 0}));
+  EXPECT_TRUE(out.servo_active);
+  EXPECT_FALSE(out.servo_restart);
+}
+
+TEST_F(MissionTest, LowFitnessCountsAsNotRecognised) {
+  Mission m = make();
+  for (int k = 0; k < 20; ++k)
+    tick(m, true, seen_at({1.0, 0, 0}), false, params.min_fitness - 0.01);
+  EXPECT_EQ(m.state(), MissionState::search);
+}
+
+TEST_F(MissionTest, AlignNeedsConsecutiveFrames) {
+  Mission m = make();
+  to_approach(m);
+  tick(m, true, seen_at({params.standoff_m, 0, 0}));
+  ASSERT_EQ(m.state(), MissionState::align);
+  for (int k = 0; k < params.align_hold_frames - 1; ++k)
+    tick(m, true, seen_at({params.standoff_m, 0, 0}));
+  // One frame out of the lateral threshold restarts the count.
+  tick(m, true, seen_at({params.standoff_m, 2.0 * params.align_lateral_m, 0}));
+  for (int k = 0; k < params.align_hold_frames - 1; ++k)
+    tick(m, true, seen_at({params.standoff_m, 0, 0}));
+  EXPECT_EQ(m.state(), MissionState::align);
+  tick(m, true, seen_at({params.standoff_m, 0, 0}));
+  EXPECT_EQ(m.state(), MissionState::dock);
+}
+
+TEST_F(MissionTest, DockAbortsOnLateralAndYawLimits) {
+  {
+    Mission m = make();
+    to_dock(m);
+    tick(m, true, seen_at({0.3, 0, 1.5 * params.dock_abort_lateral_m}));
+    EXPECT_EQ(m.state(), MissionState::abort);
+  }
+  {
+    Mission m = make();
+    to_dock(m);
+    tick(m, true, seen_at({0.3, 0, 0}, 1.5 * params.dock_abort_yaw_rad));
+    EXPECT_EQ(m.state(), MissionState::abort);
+    drain(m);
+  }
+}
+
+TEST_F(MissionTest, DockPushesBlindNearTheSocket) {
+  Mission m = make();
+  to_dock(m);
+  tick(m, true, seen_at({0.5 * params.dock_blind_distance_m, 0, 0}));
+  MissionOutput out;
+  for (int k = 0; k < 3 * params.lost_frames; ++k) out = blind(m);
+  EXPECT_EQ(out.state, MissionState::dock);  // no abort for the expected loss of view
+  EXPECT_TRUE(out.use_override);
+  EXPECT_NEAR(out.wrench_override_body[0], params.dock_blind_push_n, 1e-9);  // along the axis
+  out = tick(m, false, Eigen::Isometry3d::Identity(), true);
+  for (int k = 1; k < params.contact_frames; ++k) {
+    out = tick(m, false, Eigen::Isometry3d::Identity(), true);
+  }
+  EXPECT_EQ(out.state, MissionState::docked);
+}
+
+TEST_F(MissionTest, BlindPushTimesOut) {
+  Mission m = make();
+  to_dock(m);
+  tick(m, true, seen_at({0.05, 0, 0}));
+  const auto t0 = now;
+  while (m.state() == MissionState::dock && now - t0 < 60s) blind(m);
+  EXPECT_EQ(m.state(), MissionState::abort);
+  EXPECT_NEAR(std::chrono::duration<double>(now - t0).count(), params.dock_blind_timeout_s, 0.1);
+}
+
+TEST_F(MissionTest, LossFarFromTheSocketAbortsTheDock) {
+  Mission m = make();
+  to_dock(m);
+  tick(m, true, seen_at({2.0 * params.dock_blind_distance_m, 0, 0}));
+  for (int k = 0; k < params.lost_frames; ++k) blind(m);
+  EXPECT_EQ(m.state(), MissionState::abort);
+}
+
+TEST_F(MissionTest, RetriesAreBounded) {
+  params.max_retries = 2;
+  params.abort_backoff_s = 0.1;
+  Mission m = make();
+  for (int attempt = 0; attempt <= params.max_retries; ++attempt) {
+    to_approach(m);
+    while (m.state() == MissionState::approach) blind(m);
+    if (attempt < params.max_retries) {
+      ASSERT_EQ(m.state(), MissionState::abort);
+      while (m.state() == MissionState::abort) blind(m);
+      ASSERT_EQ(m.state(), MissionState::search);
+    }
+  }
+  EXPECT_EQ(m.state(), MissionState::failed);
+  EXPECT_EQ(m.aborts(), 3);
+  const MissionOutput out = tick(m, true, seen_at({1.0, 0, 0}));
+  EXPECT_FALSE(out.thrusters_enabled);
+  EXPECT_EQ(out.state, MissionState::failed);
+  const std::vector<std::string> events = drain(m);
+  ASSERT_FALSE(events.empty());
+  EXPECT_EQ(events.back(), "abort>failed:retries exhausted");
+  m.restart(now);
+  EXPECT_EQ(m.state(), MissionState::search);
+  EXPECT_EQ(m.aborts(), 0);
+}
+
+TEST_F(MissionTest, TimeoutsAbort) {
+  params.approach_timeout_s = 2.0;
+  Mission m = make();
+  to_approach(m);
+  for (int k = 0; k < 100; ++k) tick(m, true, seen_at({1.5, 0, 0}));
+  EXPECT_EQ(m.state(), MissionState::abort);
+  std::vector<std::string> ev = drain(m);
+  EXPECT_EQ(ev.back(), "approach>abort:approach timed out");
+}
+
+TEST_F(MissionTest, EventQueueKeepsTheNewest) {
+  params.abort_backoff_s = 0.0;
+  params.max_retries = 100;
+  Mission m = make();
+  for (int i = 0; i < 20; ++i) {  // 3 events per cycle: 60 events
+    to_approach(m);
+    while (m.state() != MissionState::search) blind(m);
+  }
+  EXPECT_EQ(m.dropped_events(), 60 - Mission::kEventCapacity);
+  const std::vector<std::string> ev = drain(m);
+  EXPECT_EQ(ev.size(), Mission::kEventCapacity);
+  EXPECT_EQ(ev.back(), "abort>search:backed off");
+}
+
+TEST_F(MissionTest, StandOffLiesBackAlongTheDockingAxis) {
+  Mission m = make();
+  const MissionOutput out = tick(m, true, m.standoff_T_cl_marker());
+  EXPECT_NEAR(out.axial_error_m, -params.standoff_m, 1e-9);
+  EXPECT_NEAR(out.lateral_error_m, 0.0, 1e-9);
+  // Docked pose: the marker's docking axis is the camera's optical axis.
+  EXPECT_NEAR((m.standoff_T_cl_marker().translation() - docked.translation()).z(),
+              params.standoff_m, 1e-9);
+}
+
+}  // namespace
+}  // namespace rovctl::control

@@ -1,0 +1,215 @@
+// PdVisualServo: sign conventions per axis, the 4-DOF default, filtered derivative, integral with
+// anti-windup, error clipping, feed-forward, non-finite input.
+#include "control/pd_visual_servo.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <random>
+
+#include "hal/docking_station.hpp"
+#include "hal/vehicle_geometry.hpp"
+
+namespace rovctl::control {
+namespace {
+
+using namespace std::chrono_literals;
+
+struct Fixture : ::testing::Test {
+  hal::VehicleGeometry geometry;
+  Eigen::Isometry3d T_body_cl = geometry.T_body_cl();
+  Eigen::Isometry3d desired =
+      hal::docked_T_cl_marker(T_body_cl, geometry.probe_tip_body_m, hal::DockingStation{});
+
+  // The measured T_cl_marker when the marker sits at `T_bodynow_bodydesired` * (desired pose):
+  // i.e. the desired body frame is at that pose in the current body frame.
+  Eigen::Isometry3d measured(const Eigen::Isometry3d& T_now_desired) const {
+    return T_body_cl.inverse() * T_now_desired * T_body_cl * desired;
+  }
+  static Eigen::Isometry3d moved(const Eigen::Vector3d& t) {
+    return Eigen::Isometry3d(Eigen::Translation3d(t));
+  }
+  static Eigen::Isometry3d turned(double angle, const Eigen::Vector3d& axis) {
+    return Eigen::Isometry3d(Eigen::AngleAxisd(angle, axis));
+  }
+  static ServoParams params() {
+    ServoParams p;
+    p.net_buoyancy_n = 0.0;
+    p.ki_linear.setZero();
+    p.ki_angular.setZero();
+    p.kp_angular = {5.0, 6.0, 7.0};
+    return p;
+  }
+};
+
+using PdVisualServoTest = Fixture;
+
+TEST_F(PdVisualServoTest, ZeroErrorZeroWrench) {
+  PdVisualServo servo(params(), T_body_cl);
+  EXPECT_LT(servo.update(desired, desired, 33ms).norm(), 1e-9);
+}
+
+TEST_F(PdVisualServoTest, SignConventionPerTranslationAxis) {
+  const ServoParams p = params();
+  for (int axis = 0; axis < 3; ++axis) {
+    // The docked pose lies 0.1 m along +axis of the body: forward, starboard, down.
+    PdVisualServo servo(p, T_body_cl);
+    const Eigen::Vector3d d = 0.1 * Eigen::Vector3d::Unit(axis);
+    const Wrench w = servo.update(measured(moved(d)), desired, 33ms);
+    EXPECT_NEAR(w[axis], p.kp_linear[axis] * 0.1, 1e-9) << "axis " << axis;
+    for (int j = 0; j < 6; ++j) {
+      if (j != axis) {
+        EXPECT_NEAR(w[j], 0.0, 1e-9) << "axis " << axis << " leaks into " << j;
+      }
+    }
+  }
+}
+
+TEST_F(PdVisualServoTest, SignConventionYaw) {
+  // The docked heading is 0.1 rad to starboard: turn right, positive Mz about body z (down).
+  const ServoParams p = params();
+  PdVisualServo servo(p, T_body_cl);
+  const Wrench w = servo.update(measured(turned(0.1, Eigen::Vector3d::UnitZ())), desired, 33ms);
+  EXPECT_NEAR(w[5], p.kp_angular[2] * 0.1, 1e-9);
+  EXPECT_NEAR(w.head<3>().norm(), 0.0, 1e-9);  // turning about the body origin: no translation
+  // Seen in the camera, the marker's docking axis then points to the right of the optical axis.
+  const Eigen::Vector3d axis_cl = measured(turned(0.1, Eigen::Vector3d::UnitZ())).linear().col(2);
+  EXPECT_GT(axis_cl.x(), 0.0);
+}
+
+TEST_F(PdVisualServoTest, RollAndPitchOnlyInSixDof) {
+  ServoParams p = params();
+  for (int axis = 0; axis < 2; ++axis) {
+    const Eigen::Isometry3d m = measured(turned(0.05, Eigen::Vector3d::Unit(axis)));
+    p.six_dof = false;
+    PdVisualServo four(p, T_body_cl);
+    const Wrench w4 = four.update(m, desired, 33ms);
+    EXPECT_NEAR(w4[3 + axis], 0.0, 1e-12);
+    p.six_dof = true;
+    PdVisualServo six(p, T_body_cl);
+    const Wrench w6 = six.update(m, desired, 33ms);
+    EXPECT_NEAR(w6[3 + axis], p.kp_angular[axis] * 0.05, 1e-9) << "axis " << axis;
+    EXPECT_NEAR(w6.head<3>().norm(), 0.0, 1e-9);
+  }
+}
+
+TEST_F(PdVisualServoTest, FourDofYawIgnoresRollAndPitch) {
+  // Pitched and yawed: the 4-DOF yaw is the docking axis's heading in the body x-y plane.
+  const double yaw = 0.08;
+  const Eigen::Isometry3d m =
+      measured(turned(yaw, Eigen::Vector3d::UnitZ()) * turned(0.2, Eigen::Vector3d::UnitY()));
+  const PoseError e = pose_error_body(T_body_cl, m, desired, false);
+  EXPECT_NEAR(e[5], yaw, 1e-9);
+}
+
+TEST_F(PdVisualServoTest, DerivativeOpposesTheApproach) {
+  // The vehicle closes a 1 m surge error at 0.3 m/s: the filtered rate is about -0.3 m/s and the
+  // D term brakes.
+  ServoParams p = params();
+  PdVisualServo servo(p, T_body_cl);
+  Wrench w = Wrench::Zero();
+  double e = 1.0;
+  for (int k = 0; k < 60; ++k, e -= 0.3 * 0.033) {
+    w = servo.update(measured(moved({e, 0, 0})), desired, 33ms);
+  }
+  e += 0.3 * 0.033;
+  EXPECT_NEAR(servo.error_rate()[0], -0.3, 0.01);
+  EXPECT_NEAR(w[0], p.kp_linear[0] * std::min(e, p.max_position_error_m) - p.kd_linear[0] * 0.3,
+              p.kd_linear[0] * 0.01);
+}
+
+TEST_F(PdVisualServoTest, DerivativeIsFilteredNotARawDifference) {
+  // Hovering at the goal with 5 mm of estimate noise: the D term's jitter is far below what
+  // kd times a raw difference would give.
+  ServoParams p = params();
+  p.kp_linear.setZero();
+  PdVisualServo servo(p, T_body_cl);
+  std::mt19937 rng(7);
+  std::normal_distribution<double> noise(0.0, 0.005);
+  double sq = 0.0;
+  const int n = 1000;
+  for (int k = 0; k < n; ++k) {
+    const Wrench w = servo.update(measured(moved({noise(rng), 0, 0})), desired, 33ms);
+    sq += w[0] * w[0];
+  }
+  const double rms = std::sqrt(sq / n);
+  const double raw_rms = p.kd_linear[0] * std::sqrt(2.0) * 0.005 / 0.033;
+  EXPECT_LT(rms, 0.4 * raw_rms) << "D jitter " << rms << " N, raw " << raw_rms << " N";
+}
+
+TEST_F(PdVisualServoTest, GapRestartsTheDerivative) {
+  PdVisualServo servo(params(), T_body_cl);
+  servo.update(measured(moved({0.3, 0, 0})), desired, 33ms);
+  servo.update(measured(moved({0.1, 0, 0})), desired, 2s);  // long gap: no kick
+  EXPECT_TRUE(servo.error_rate().isZero());
+}
+
+TEST_F(PdVisualServoTest, IntegralAccumulatesAndIsClamped) {
+  ServoParams p = params();
+  p.kp_linear.setZero();
+  p.kd_linear.setZero();
+  p.ki_linear = {10.0, 10.0, 10.0};
+  p.integral_limit_linear_n = {2.0, 2.0, 2.0};
+  PdVisualServo servo(p, T_body_cl);
+  const Eigen::Isometry3d m = measured(moved({0.0, 0.05, 0.0}));
+  Wrench w = servo.update(m, desired, 33ms);
+  for (int k = 0; k < 30; ++k) w = servo.update(m, desired, 100ms);  // 3 s
+  EXPECT_NEAR(w[1], 10.0 * 0.05 * 3.0 + 10.0 * 0.05 * 0.033, 1e-6);
+  for (int k = 0; k < 100; ++k) w = servo.update(m, desired, 100ms);
+  EXPECT_NEAR(w[1], 2.0, 1e-9);  // anti-windup limit
+  // The other sign unwinds at once from the limit, not from a wound-up state.
+  const Eigen::Isometry3d back = measured(moved({0.0, -0.05, 0.0}));
+  w = servo.update(back, desired, 100ms);
+  EXPECT_NEAR(w[1], 2.0 - 10.0 * 0.05 * 0.1, 1e-9);
+}
+
+TEST_F(PdVisualServoTest, IntegralFreezesWhileSaturated) {
+  ServoParams p = params();
+  p.kp_linear.setZero();
+  p.kd_linear.setZero();
+  p.ki_linear = {10.0, 10.0, 10.0};
+  PdVisualServo servo(p, T_body_cl);
+  const Eigen::Isometry3d m = measured(moved({0.1, 0.0, 0.0}));
+  servo.update(m, desired, 33ms);
+  const double before = servo.update(m, desired, 100ms)[0];
+  servo.set_allocation_fraction(0.6);
+  EXPECT_NEAR(servo.update(m, desired, 100ms)[0], before, 1e-12);
+  servo.set_allocation_fraction(1.0);
+  EXPECT_GT(servo.update(m, desired, 100ms)[0], before);
+  // Holding trim while blind: the integral is what pushes against the current.
+  EXPECT_NEAR(servo.hold_wrench_body()[0], servo.integral_term()[0], 1e-12);
+  EXPECT_GT(servo.hold_wrench_body()[0], 0.0);
+  servo.reset();
+  EXPECT_TRUE(servo.integral_term().isZero());
+}
+
+TEST_F(PdVisualServoTest, LargeErrorsAreClipped) {
+  ServoParams p = params();
+  PdVisualServo servo(p, T_body_cl);
+  const Wrench w = servo.update(measured(moved({5.0, 0, 0})), desired, 33ms);
+  EXPECT_NEAR(w[0], p.kp_linear[0] * p.max_position_error_m, 1e-9);
+}
+
+TEST_F(PdVisualServoTest, BuoyancyFeedForwardPushesDown) {
+  ServoParams p = params();
+  p.net_buoyancy_n = 3.0;
+  PdVisualServo servo(p, T_body_cl);
+  const Wrench w = servo.update(desired, desired, 33ms);
+  EXPECT_NEAR(w[2], 3.0, 1e-12);
+  EXPECT_NEAR(servo.feedforward_body()[2], 3.0, 1e-12);
+}
+
+TEST_F(PdVisualServoTest, NonFiniteInputGivesNaNAndKeepsState) {
+  PdVisualServo servo(params(), T_body_cl);
+  servo.update(measured(moved({0.2, 0, 0})), desired, 33ms);
+  const PoseError before = servo.error();
+  Eigen::Isometry3d bad = desired;
+  bad.translation().x() = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_FALSE(servo.update(bad, desired, 33ms).allFinite());
+  EXPECT_TRUE(servo.error().isApprox(before));
+  EXPECT_TRUE(servo.update(measured(moved({0.2, 0, 0})), desired, 33ms).allFinite());
+}
+
+}  // namespace
+}  // namespace rovctl::control

@@ -1,0 +1,134 @@
+// The per-tick calls allocate nothing. This file interposes the malloc family in control_tests
+// (glibc, no sanitizer: that also catches Eigen's aligned mallocs) and counts per thread.
+#include <gtest/gtest.h>
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "control/control_allocation_pseudo_inverse.hpp"
+#include "control/failsafe.hpp"
+#include "control/mission.hpp"
+#include "control/pd_visual_servo.hpp"
+#include "hal/docking_station.hpp"
+#include "hal/vehicle_geometry.hpp"
+
+#if defined(__SANITIZE_ADDRESS__)
+#define ROVCTL_NO_MALLOC_HOOKS 1
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define ROVCTL_NO_MALLOC_HOOKS 1
+#endif
+#endif
+
+namespace {
+thread_local std::uint64_t t_allocations = 0;
+}
+
+#if !defined(ROVCTL_NO_MALLOC_HOOKS)
+extern "C" {
+void* __libc_malloc(std::size_t size);
+void* __libc_calloc(std::size_t count, std::size_t size);
+void* __libc_realloc(void* p, std::size_t size);
+void* __libc_memalign(std::size_t align, std::size_t size);
+
+void* malloc(std::size_t size) {
+  ++t_allocations;
+  return __libc_malloc(size);
+}
+void* calloc(std::size_t count, std::size_t size) {
+  ++t_allocations;
+  return __libc_calloc(count, size);
+}
+void* realloc(void* p, std::size_t size) {
+  ++t_allocations;
+  return __libc_realloc(p, size);
+}
+void* memalign(std::size_t align, std::size_t size) {
+  ++t_allocations;
+  return __libc_memalign(align, size);
+}
+void* aligned_alloc(std::size_t align, std::size_t size) {
+  ++t_allocations;
+  return __libc_memalign(align, size);
+}
+int posix_memalign(void** out, std::size_t align, std::size_t size) {
+  ++t_allocations;
+  *out = __libc_memalign(align, size);
+  return *out ? 0 : 12;  // ENOMEM
+}
+}
+#endif
+
+namespace rovctl::control {
+namespace {
+
+using namespace std::chrono_literals;
+
+TEST(Realtime, CounterCounts) {
+#if defined(ROVCTL_NO_MALLOC_HOOKS)
+  GTEST_SKIP() << "malloc belongs to the sanitizer runtime";
+#endif
+  const std::uint64_t before = t_allocations;
+  std::vector<int>* v = new std::vector<int>(100);
+  delete v;
+  EXPECT_GE(t_allocations - before, 2u);
+}
+
+TEST(Realtime, TickCallsDoNotAllocate) {
+#if defined(ROVCTL_NO_MALLOC_HOOKS)
+  GTEST_SKIP() << "malloc belongs to the sanitizer runtime";
+#endif
+  const hal::VehicleGeometry geometry;
+  const Eigen::Isometry3d T_body_cl = geometry.T_body_cl();
+  const Eigen::Isometry3d docked =
+      hal::docked_T_cl_marker(T_body_cl, geometry.probe_tip_body_m, hal::DockingStation{});
+  ControlParams control;
+  control.allocation.thruster_weights = {{"t5_vert_front_right", 2.0}};
+  const ControlAllocator allocator(geometry.thrusters, control.allocation);
+  PdVisualServo servo(control.servo, T_body_cl);
+  MissionParams mp;
+  Mission mission(mp, T_body_cl, docked, geometry.probe_tip_body_m);
+  Failsafe failsafe(control.failsafe);
+  hal::ThrusterCommand command;
+
+  const std::uint64_t before = t_allocations;
+  std::chrono::nanoseconds now{0};
+  MissionEvent me;
+  FailsafeEvent fe;
+  for (int k = 0; k < 2000; ++k) {
+    now += 33ms;
+    MissionInput in;
+    in.now = now;
+    in.recognised = (k / 50) % 4 != 3;  // drop-outs drive the mission through its states
+    in.fitness = 0.8;
+    in.T_cl_marker = offset_along_docking_axis(docked, 1.0 - 0.0005 * k);
+    const MissionOutput out = mission.update(in);
+    Wrench w = servo.feedforward_body();
+    if (out.servo_active) {
+      if (out.servo_restart) servo.reset();
+      w = servo.update(in.T_cl_marker, out.T_cl_marker_desired, 33ms);
+    } else if (out.use_override) {
+      w += out.wrench_override_body;
+    }
+    servo.set_allocation_fraction(allocator.allocate(w * (k % 7 == 0 ? 50.0 : 1.0), command));
+    FailsafeInput fi;
+    fi.now = now;
+    fi.T_cl_marker = in.T_cl_marker;
+    fi.fitness = in.fitness;
+    fi.wrench_body = w;
+    fi.mission = out.state;
+    fi.grab = k == 1500 ? hal::GrabStatus::device_lost : hal::GrabStatus::ok;
+    failsafe.update(fi);
+    while (mission.pop_event(me)) {
+    }
+    while (failsafe.pop_event(fe)) {
+    }
+  }
+  EXPECT_EQ(t_allocations - before, 0u);
+  EXPECT_TRUE(failsafe.tripped());
+  EXPECT_GT(mission.aborts(), 0);
+}
+
+}  // namespace
+}  // namespace rovctl::control

@@ -1,0 +1,92 @@
+// Segmentation on shaded, highlighted, noisy renders and under a water cast, not flat colours.
+#include "estimator/hue_segmenter.hpp"
+
+#include <gtest/gtest.h>
+
+#include "estimator/pose_refiner.hpp"
+#include "test_scene.hpp"
+
+namespace rovctl::estimator {
+namespace {
+
+using testing::TestScene;
+
+struct Rates {
+  double recall = 0.0;           // pixels of each sphere's disc labelled with its colour
+  double false_positive = 0.0;  // background pixels labelled with any colour
+};
+
+Rates measure(TestScene& scene, const Eigen::Isometry3d& T) {
+  scene.render(T, 3);
+  HueSegmenter seg(scene.marker);
+  cv::Mat labels;
+  seg.segment(scene.left_bgr, labels);
+  cv::Mat inside(labels.size(), CV_8UC1, cv::Scalar(0));
+  long hits = 0, total = 0;
+  for (const hal::MarkerSphere& s : scene.marker.spheres) {
+    Eigen::Vector2d uv = Eigen::Vector2d::Zero();
+    const Eigen::Vector3d c = T * s.centre_marker_m;
+    EXPECT_TRUE(PoseRefiner::silhouette_centroid(scene.rig.left, c, s.radius_m, uv));
+    const double r_px = scene.rig.left.fx_px * s.radius_m / c.norm();
+    for (int v = 0; v < labels.rows; ++v) {
+      for (int u = 0; u < labels.cols; ++u) {
+        const double d = std::hypot(u - uv.x(), v - uv.y());
+        if (d < 1.5 * r_px) inside.at<std::uint8_t>(v, u) = 1;
+        if (d < 0.9 * r_px) {
+          ++total;
+          hits += labels.at<std::uint8_t>(v, u) == static_cast<std::uint8_t>(s.colour);
+        }
+      }
+    }
+  }
+  long fp = 0, bg = 0;
+  for (int v = 0; v < labels.rows; ++v) {
+    for (int u = 0; u < labels.cols; ++u) {
+      if (inside.at<std::uint8_t>(v, u)) continue;
+      ++bg;
+      fp += labels.at<std::uint8_t>(v, u) != 0;
+    }
+  }
+  return {static_cast<double>(hits) / total, static_cast<double>(fp) / bg};
+}
+
+TEST(HueSegmenter, ShadedSpheresWithHighlightsAndNoise) {
+  TestScene scene;
+  const Rates r = measure(scene, hal::make_pose({0.05, 0.0, 0.5}, Eigen::Quaterniond::Identity()));
+  EXPECT_GT(r.recall, 0.9);
+  EXPECT_LT(r.false_positive, 1e-4);
+}
+
+TEST(HueSegmenter, BlueGreenCastOfWater) {
+  hal::mock::RenderOptions o;
+  o.water_attenuation_per_m = 0.5;
+  o.background_top_rgb = {0.05, 0.30, 0.32};  // a strongly tinted water background
+  o.background_bottom_rgb = {0.02, 0.12, 0.14};
+  o.noise_sigma = 3.0;
+  TestScene scene(o);
+  const Rates r = measure(scene, hal::make_pose({0.05, 0.0, 1.2}, Eigen::Quaterniond::Identity()));
+  EXPECT_GT(r.recall, 0.8);
+  EXPECT_LT(r.false_positive, 1e-3);
+}
+
+TEST(HueSegmenter, TableAgreesWithTheHsvRule) {
+  const hal::MarkerModel marker = hal::MarkerModel::standard();
+  const HueSegmenter seg(marker);
+  // BGR: a dark shaded red, a bright green, a blue, a grey highlight, black, a cyan background.
+  EXPECT_EQ(seg.classify(10, 12, 90), hal::ColourClass::red);
+  EXPECT_EQ(seg.classify(40, 200, 30), hal::ColourClass::green);
+  EXPECT_EQ(seg.classify(220, 60, 20), hal::ColourClass::blue);
+  EXPECT_EQ(seg.classify(240, 240, 245), hal::ColourClass::none);
+  EXPECT_EQ(seg.classify(2, 2, 6), hal::ColourClass::none);  // below the value floor
+  EXPECT_EQ(seg.classify(160, 150, 120), hal::ColourClass::none);
+  for (int b = 2; b < 256; b += 36) {
+    for (int g = 2; g < 256; g += 36) {
+      for (int r = 2; r < 256; r += 36) {
+        EXPECT_EQ(seg.classify(b, g, r), HueSegmenter::classify_exact(marker, b, g, r));
+      }
+    }
+  }
+}
+
+}  // namespace
+}  // namespace rovctl::estimator
