@@ -49,7 +49,8 @@ struct ModeFigures {
 double percentile(std::vector<double> v, double p) {
   if (v.empty()) return NAN;
   std::sort(v.begin(), v.end());
-  const std::size_t i = std::min(v.size() - 1, static_cast<std::size_t>(std::ceil(p * v.size())) - 1);
+  const std::size_t i =
+      std::min(v.size() - 1, static_cast<std::size_t>(std::ceil(p * v.size())) - 1);
   return v[p <= 0.0 ? 0 : i];
 }
 
@@ -105,7 +106,8 @@ ModeFigures bench_mode(const hal::StereoRig& rig, const hal::MarkerModel& marker
     p.time_budget_ms = 33.0;
     estimator::PoseEstimator est(rig, marker, p, 1);
     std::vector<double> gens;
-    for (int f = 0; f < 3; ++f) gens.push_back(est.update(pairs[f].left, pairs[f].right).generations);
+    for (int f = 0; f < 3; ++f)
+      gens.push_back(est.update(pairs[f].left, pairs[f].right).generations);
     out.generations_per_frame.emplace_back(population, static_cast<int>(percentile(gens, 0.5)));
   }
   std::vector<double> cold, ms, t_err, r_err;
@@ -179,8 +181,8 @@ void print_figures(const ModeFigures& m, const std::string& mode, int cap) {
 }  // namespace
 
 int command_bench(const Words& words) {
-  const CliArgs args = CliArgs::parse("bench", words, {"--config", "--pairs", "--frame-cap"},
-                                      {"--json"});
+  const CliArgs args =
+      CliArgs::parse("bench", words, {"--config", "--pairs", "--frame-cap"}, {"--json"});
   const std::string config_file =
       args.has("--config") ? args.get("--config") : default_config_path();
   const AppConfig config = load_app_config(config_file);

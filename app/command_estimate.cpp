@@ -42,9 +42,8 @@ cv::Mat read_image(const std::string& path, const hal::CameraModel& camera,
 }  // namespace
 
 int command_estimate(const Words& words) {
-  const CliArgs args = CliArgs::parse("estimate", words,
-                                      {"--config", "--left", "--right", "--frames", "--seed"},
-                                      {"--json"});
+  const CliArgs args = CliArgs::parse(
+      "estimate", words, {"--config", "--left", "--right", "--frames", "--seed"}, {"--json"});
   for (const char* required : {"--config", "--left", "--right"}) {
     if (!args.has(required)) {
       throw UsageError(std::string("rovctl estimate: ") + required +
@@ -106,21 +105,20 @@ int command_estimate(const Words& words) {
     std::cout << json.str() << "\n";
   } else {
     char line[256];
-    std::snprintf(line, sizeof line, "t_cl_marker_m     [%.5f, %.5f, %.5f]\n", t.x(), t.y(),
-                  t.z());
+    std::snprintf(line, sizeof line, "t_cl_marker_m     [%.5f, %.5f, %.5f]\n", t.x(), t.y(), t.z());
     std::cout << line;
     std::snprintf(line, sizeof line, "q_cl_marker_wxyz  [%.6f, %.6f, %.6f, %.6f]\n", q.w(), q.x(),
                   q.y(), q.z());
     std::cout << line;
     std::snprintf(line, sizeof line,
                   "fitness %.3f (%s), %ld frames, %ld generations, %.2f ms estimator time\n",
-                  estimate.fitness, estimate.recognised ? "recognised" : "NOT recognised",
-                  frames, generations, time_ms);
+                  estimate.fitness, estimate.recognised ? "recognised" : "NOT recognised", frames,
+                  generations, time_ms);
     std::cout << line;
   }
   if (!estimate.recognised) {
-    std::cerr << "rovctl estimate: marker not recognised (best fitness "
-              << estimate.fitness << " < " << config.estimator.recognition_threshold << ")\n";
+    std::cerr << "rovctl estimate: marker not recognised (best fitness " << estimate.fitness
+              << " < " << config.estimator.recognition_threshold << ")\n";
     return kExitRuntimeFailure;
   }
   return kExitOk;

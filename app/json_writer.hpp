@@ -15,7 +15,9 @@ class JsonWriter {
   JsonWriter& end_array();
   JsonWriter& field(std::string_view key, double value);  // non-finite -> null
   JsonWriter& field(std::string_view key, long value);
-  JsonWriter& field(std::string_view key, int value) { return field(key, static_cast<long>(value)); }
+  JsonWriter& field(std::string_view key, int value) {
+    return field(key, static_cast<long>(value));
+  }
   JsonWriter& field(std::string_view key, bool value);
   JsonWriter& field(std::string_view key, std::string_view value);
   JsonWriter& value(double value);  // an array element

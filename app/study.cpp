@@ -10,8 +10,11 @@
 #include <fstream>
 #include <limits>
 #include <mutex>
+#include <optional>
 #include <stdexcept>
 #include <thread>
+
+#include <time.h>
 
 #include "estimator/pose_estimator.hpp"
 #include "hal/pose.hpp"
@@ -26,8 +29,11 @@ double seconds_since(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
 }
 
-double ms(std::chrono::nanoseconds d) {
-  return std::chrono::duration<double, std::milli>(d).count();
+// CPU time of the calling thread: what the estimator costs, whatever else the machine runs.
+double thread_cpu_ms() {
+  timespec ts{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return static_cast<double>(ts.tv_sec) * 1e3 + static_cast<double>(ts.tv_nsec) * 1e-6;
 }
 
 std::uint64_t splitmix64(std::uint64_t x) {
@@ -150,7 +156,9 @@ StudyRun run_one(const hal::StereoRig& rig, const hal::MarkerModel& marker,
   const int offset = static_cast<int>(seed % static_cast<std::uint64_t>(n));
   for (int f = 0; f < frames; ++f) {
     const int k = (offset + f) % n;
+    const double cpu_start_ms = thread_cpu_ms();
     const estimator::PoseEstimate e = estimator.update(bank.left[k], bank.right[k]);
+    run.cpu_s += (thread_cpu_ms() - cpu_start_ms) * 1e-3;
     run.wall_s += std::chrono::duration<double>(e.compute_time).count();
     run.frames_run = f + 1;
     run.final_fitness = e.fitness;
@@ -161,11 +169,13 @@ StudyRun run_one(const hal::StereoRig& rig, const hal::MarkerModel& marker,
     if (run.frames_to_fitness < 0 && e.fitness >= s.goal_fitness) {
       run.frames_to_fitness = f + 1;
       run.wall_to_fitness_s = run.wall_s;
+      run.cpu_to_fitness_s = run.cpu_s;
     }
     if (run.frames_to_pose < 0 && run.final_translation_error_mm <= s.goal_translation_mm &&
         run.final_rotation_error_deg <= s.goal_rotation_deg) {
       run.frames_to_pose = f + 1;
       run.wall_to_pose_s = run.wall_s;
+      run.cpu_to_pose_s = run.cpu_s;
     }
     if (run.frames_to_fitness > 0 && run.frames_to_pose > 0) break;
   }
@@ -303,14 +313,15 @@ double percentile(std::vector<double> values, double p) {
 }
 
 TimeStats time_stats(const std::vector<int>& frames_to_goal, const std::vector<double>& wall_s,
-                     double frame_period_s) {
+                     double frame_period_s, const std::vector<double>& cpu_s) {
   TimeStats t;
   t.runs = static_cast<int>(frames_to_goal.size());
-  std::vector<double> times, walls;
+  std::vector<double> times, walls, cpus;
   for (std::size_t i = 0; i < frames_to_goal.size(); ++i) {
     if (frames_to_goal[i] > 0) {
       times.push_back(frames_to_goal[i] * frame_period_s);
       if (i < wall_s.size()) walls.push_back(wall_s[i]);
+      if (i < cpu_s.size()) cpus.push_back(cpu_s[i]);
     } else {
       times.push_back(kInf);
       ++t.failures;
@@ -319,6 +330,7 @@ TimeStats time_stats(const std::vector<int>& frames_to_goal, const std::vector<d
   t.median_s = percentile(times, 0.5);
   t.p90_s = percentile(times, 0.9);
   t.wall_median_s = walls.empty() ? kInf : percentile(walls, 0.5);
+  t.cpu_median_s = cpus.empty() ? kInf : percentile(cpus, 0.5);
   return t;
 }
 
@@ -331,7 +343,7 @@ std::vector<CombinationSummary> summarise_combinations(
     row.variant = variant;
     row.combination = c;
     std::vector<int> fitness_frames, pose_frames;
-    std::vector<double> fitness_wall, pose_wall;
+    std::vector<double> fitness_wall, pose_wall, fitness_cpu, pose_cpu;
     for (const StudyRun& r : runs) {
       if (r.variant != variant || r.combination.population != c.population ||
           r.combination.selection_rate != c.selection_rate ||
@@ -343,9 +355,11 @@ std::vector<CombinationSummary> summarise_combinations(
       fitness_wall.push_back(r.wall_to_fitness_s);
       pose_frames.push_back(r.frames_to_pose);
       pose_wall.push_back(r.wall_to_pose_s);
+      fitness_cpu.push_back(r.cpu_to_fitness_s);
+      pose_cpu.push_back(r.cpu_to_pose_s);
     }
-    row.fitness = time_stats(fitness_frames, fitness_wall, frame_period_s);
-    row.pose = time_stats(pose_frames, pose_wall, frame_period_s);
+    row.fitness = time_stats(fitness_frames, fitness_wall, frame_period_s, fitness_cpu);
+    row.pose = time_stats(pose_frames, pose_wall, frame_period_s, pose_cpu);
     rows.push_back(row);
   }
   return rows;
@@ -416,24 +430,31 @@ Fig8Curve measure_fig8(const hal::StereoRig& rig, const hal::MarkerModel& marker
     const GaCombination c{population, selection_rate, base.ga.mutation_rate};
     std::size_t k = 0;
     auto timed = [&](estimator::PoseEstimator& e) {
-      const estimator::PoseEstimate est = e.update(left[k % n], right[k % n]);
+      const double start_ms = thread_cpu_ms();
+      e.update(left[k % n], right[k % n]);
       ++k;
-      return ms(est.compute_time);
+      return thread_cpu_ms() - start_ms;
     };
-    // A probe sizes the long measurement to ~40 % of a frame, long against timer and cache noise.
     estimator::PoseEstimator lo(rig, marker, run_params(base, mode, c, 1), 1);
-    constexpr int kProbe = 32;
-    estimator::PoseEstimator probe(rig, marker, run_params(base, mode, c, kProbe), 1);
     timed(lo);
-    timed(probe);
-    const double guess_ms = std::max((timed(probe) - timed(lo)) / (kProbe - 1), 1e-5);
-    const int g_hi = std::clamp(static_cast<int>(0.4 * frame_ms / guess_ms), 16, 200000);
-    estimator::PoseEstimator hi(rig, marker, run_params(base, mode, c, g_hi), 1);
-    timed(hi);
-    double t_lo = std::numeric_limits<double>::infinity(), t_hi = t_lo;
+    double t_lo = std::min(timed(lo), timed(lo));
+    // The long measurement grows until its generations take a quarter of a frame: long against
+    // timer and cache noise, short enough to be rarely disturbed.
+    std::optional<estimator::PoseEstimator> hi;
+    int g_hi = 64;
+    double t_hi = 0.0;
+    for (;;) {
+      hi.emplace(rig, marker, run_params(base, mode, c, g_hi), 1);
+      timed(*hi);
+      t_hi = timed(*hi);
+      if (t_hi - t_lo >= 0.25 * frame_ms || g_hi >= (1 << 20)) break;
+      const double per_ms = (t_hi - t_lo) / (g_hi - 1);
+      const double wanted = per_ms > 0.0 ? 0.3 * frame_ms / per_ms : 8.0 * g_hi;
+      g_hi = static_cast<int>(std::clamp(wanted, 2.0 * g_hi, 16.0 * g_hi));
+    }
     for (int r = 0; r < std::max(1, repeats); ++r) {
       t_lo = std::min(t_lo, timed(lo));
-      t_hi = std::min(t_hi, timed(hi));
+      t_hi = std::min(t_hi, timed(*hi));
     }
     Fig8Point point;
     point.population = population;

@@ -101,6 +101,10 @@ struct StudyRun {
   double wall_to_fitness_s = 0.0;  // estimator compute time up to that frame (0 if never)
   double wall_to_pose_s = 0.0;
   double wall_s = 0.0;  // estimator compute time of the whole run
+  // The same in CPU time of the run's thread (wall time includes other processes' share).
+  double cpu_to_fitness_s = 0.0;
+  double cpu_to_pose_s = 0.0;
+  double cpu_s = 0.0;
   double final_fitness = 0.0;
   double final_translation_error_mm = 0.0;
   double final_rotation_error_deg = 0.0;
@@ -114,6 +118,7 @@ struct TimeStats {
   double median_s = 0.0;
   double p90_s = 0.0;
   double wall_median_s = 0.0;  // median compute time to the goal over the successful runs
+  double cpu_median_s = 0.0;   // the same in thread CPU time
 };
 
 struct CombinationSummary {
@@ -152,7 +157,7 @@ struct StudyResult {
 // interpolation that touches one is +inf. Empty input: NaN.
 double percentile(std::vector<double> values, double p);
 TimeStats time_stats(const std::vector<int>& frames_to_goal, const std::vector<double>& wall_s,
-                     double frame_period_s);
+                     double frame_period_s, const std::vector<double>& cpu_s = {});
 // Groups runs by (variant, combination), in the order of `combinations`.
 std::vector<CombinationSummary> summarise_combinations(
     const std::vector<StudyRun>& runs, const std::string& variant,
@@ -168,7 +173,8 @@ VariantSummary summarise_variant(const StudyVariant& variant, const std::vector<
 using StudyProgress = std::function<void(const std::string&, long, long)>;
 
 // The estimator's per-frame fixed and per-generation cost at each population, single thread,
-// on rendered frames of the study's scene.
+// on rendered frames of the study's scene, in thread CPU time (so that other processes on a
+// shared machine do not count; the minimum of `repeats` timings).
 Fig8Curve measure_fig8(const hal::StereoRig& rig, const hal::MarkerModel& marker,
                        const estimator::EstimatorParams& base, const std::string& mode,
                        double selection_rate, const std::vector<int>& populations, int repeats,

@@ -101,6 +101,7 @@ void json_row(JsonWriter& j, const CombinationSummary& row, std::string_view key
       .field("p90_s", row.fitness.p90_s)
       .field("failures", row.fitness.failures)
       .field("wall_median_s", row.fitness.wall_median_s)
+      .field("cpu_median_s", row.fitness.cpu_median_s)
       .field("pose_median_s", row.pose.median_s)
       .field("pose_p90_s", row.pose.p90_s)
       .field("pose_failures", row.pose.failures)
@@ -121,8 +122,8 @@ std::string study_runs_csv(const StudyResult& result) {
   std::ostringstream out;
   out << "variant,mode,population,selection_rate,mutation_rate,seed,generations_per_frame,"
          "frames_run,frames_to_fitness,time_to_fitness_s,wall_to_fitness_s,frames_to_pose,"
-         "time_to_pose_s,wall_to_pose_s,wall_s,final_fitness,final_translation_error_mm,"
-         "final_rotation_error_deg\n";
+         "time_to_pose_s,wall_to_pose_s,wall_s,cpu_to_fitness_s,cpu_to_pose_s,cpu_s,"
+         "final_fitness,final_translation_error_mm,final_rotation_error_deg\n";
   const double period = result.settings.frame_period_s;
   for (const StudyRun& r : result.runs) {
     std::string mode;
@@ -137,8 +138,10 @@ std::string study_runs_csv(const StudyResult& result) {
         << rate(r.combination.selection_rate) << "," << rate(r.combination.mutation_rate) << ","
         << r.seed << "," << r.generations_per_frame << "," << r.frames_run << ","
         << goal(r.frames_to_fitness, r.wall_to_fitness_s) << ","
-        << goal(r.frames_to_pose, r.wall_to_pose_s) << ","
-        << format("%.6f,%.4f,%.3f,%.3f", r.wall_s, r.final_fitness, r.final_translation_error_mm,
+        << goal(r.frames_to_pose, r.wall_to_pose_s) << "," << format("%.6f,", r.wall_s)
+        << (r.frames_to_fitness > 0 ? format("%.6f", r.cpu_to_fitness_s) : std::string()) << ","
+        << (r.frames_to_pose > 0 ? format("%.6f", r.cpu_to_pose_s) : std::string()) << ","
+        << format("%.6f,%.4f,%.3f,%.3f", r.cpu_s, r.final_fitness, r.final_translation_error_mm,
                   r.final_rotation_error_deg)
         << "\n";
   }
@@ -448,16 +451,16 @@ std::string study_report_markdown(const StudyResult& result, const std::string& 
   for (const VariantSummary& v : result.variants) {
     md << "\n## All combinations: `" << v.variant.name << "`\n\n"
        << "| population | selection | mutation | gen./frame | to fitness: median [s] | p90 [s] "
-          "| failures | wall median [s] | to pose: median [s] | p90 [s] | failures |\n"
+          "| failures | wall (CPU) median [s] | to pose: median [s] | p90 [s] | failures |\n"
        << "|---|---|---|---|---|---|---|---|---|---|---|\n";
     for (const CombinationSummary& row : v.table1) {
-      md << format("| %d | %s | %s | %d | %s | %s | %d/%d | %s | %s | %s | %d/%d |\n",
+      md << format("| %d | %s | %s | %d | %s | %s | %d/%d | %s (%s) | %s | %s | %d/%d |\n",
                    row.combination.population, rate(row.combination.selection_rate).c_str(),
                    rate(row.combination.mutation_rate).c_str(), row.generations_per_frame,
                    secs(row.fitness.median_s).c_str(), secs(row.fitness.p90_s).c_str(),
                    row.fitness.failures, row.fitness.runs, secs(row.fitness.wall_median_s).c_str(),
-                   secs(row.pose.median_s).c_str(), secs(row.pose.p90_s).c_str(), row.pose.failures,
-                   row.pose.runs);
+                   secs(row.fitness.cpu_median_s).c_str(), secs(row.pose.median_s).c_str(),
+                   secs(row.pose.p90_s).c_str(), row.pose.failures, row.pose.runs);
     }
   }
   md << "\n## Files\n\n- `study_runs.csv`: every run\n- `fig8_generations.png`: Fig. 8 with the "

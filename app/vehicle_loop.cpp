@@ -128,13 +128,14 @@ bool VehicleLoop::tick(const TickInfo& info) {
     out = mission_.update(in);
     if (out.thrusters_enabled) {
       if (out.servo_active) {
-        if (out.servo_restart || last_servo_time_.count() < 0) servo_.reset();
+        if (out.servo_restart) servo_.reset();
         const std::chrono::nanoseconds dt =
             last_servo_time_.count() < 0 ? info.period : now - last_servo_time_;
         wrench = servo_.update(estimate_.T_cl_marker, out.T_cl_marker_desired, dt);
         last_servo_time_ = now;
       } else {
-        wrench = servo_.feedforward_body();
+        // Keep the integral's trim (against the current) while the marker is briefly unseen.
+        wrench = servo_.hold_wrench_body();
         if (out.use_override) wrench += out.wrench_override_body;
         last_servo_time_ = std::chrono::nanoseconds{-1};
       }

@@ -30,7 +30,7 @@ struct ServoParams {
   double max_position_error_m = 0.2;
   double max_angle_error_rad = 0.6;
   // First-order low-pass on the differentiated error.
-  double rate_cutoff_hz = 1.5;
+  double rate_cutoff_hz = 3.0;
   // A gap longer than this between updates restarts the derivative (no kick from stale data).
   double max_update_gap_s = 0.25;
   // Buoyancy minus weight; the feed-forward pushes down (body +z) by this much.

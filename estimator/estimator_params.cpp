@@ -37,8 +37,9 @@ void describe(hal::ParamVisitor& v, EstimatorParams& p) {
           {"-", 1, 10000, "GA generations per frame when budget is 'generations' (paper: 9)"});
   v.param("time_budget_ms", p.time_budget_ms,
           {"ms", 0.1, 1000.0, "GA time per frame when budget is 'time'"});
-  v.param("recognition_threshold", p.recognition_threshold,
-          {"-", 0.0, 1.0, "fitness at or above which the marker counts as recognised (paper: 0.6)"});
+  v.param(
+      "recognition_threshold", p.recognition_threshold,
+      {"-", 0.0, 1.0, "fitness at or above which the marker counts as recognised (paper: 0.6)"});
   v.section("ga", "the genetic algorithm (paper's Table 2)", [&p](hal::ParamVisitor& s) {
     s.param("population", p.ga.population, {"-", 4, 2000, "number of genes"});
     s.param("selection_rate", p.ga.selection_rate,

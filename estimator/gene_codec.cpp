@@ -34,8 +34,8 @@ bool GeneCodec::encode(const Eigen::Isometry3d& T, Gene& gene) const {
   Eigen::Quaterniond q(T.linear());
   q.normalize();
   if (q.w() < 0.0) q.coeffs() = -q.coeffs();
-  const double p[kGeneFields] = {T.translation().x(), T.translation().y(), T.translation().z(),
-                                 q.x(), q.y(), q.z()};
+  const double p[kGeneFields] = {
+      T.translation().x(), T.translation().y(), T.translation().z(), q.x(), q.y(), q.z()};
   bool inside = true;
   for (int i = 0; i < kGeneFields; ++i) {
     const double s = (p[i] - lo_[i]) / (hi_[i] - lo_[i]);

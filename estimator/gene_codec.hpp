@@ -39,7 +39,8 @@ class GeneCodec {
   std::array<double, kGeneFields> lo_{}, hi_{};
 };
 
-// Two-point crossover: bits [cut1, cut2) are exchanged between the parents (0 <= cut1 <= cut2 <= 72).
+// Two-point crossover: bits [cut1, cut2) are exchanged between the parents (0 <= cut1 <= cut2 <=
+// 72).
 void two_point_crossover(const Gene& a, const Gene& b, int cut1, int cut2, Gene& child_a,
                          Gene& child_b);
 inline void flip_bit(Gene& gene, int bit) {

@@ -34,7 +34,8 @@ hal::ColourClass HueSegmenter::classify_exact(const hal::MarkerModel& marker, do
 }
 
 HueSegmenter::HueSegmenter(const hal::MarkerModel& marker) : lut_(1u << 18) {
-  // Each 6-bit cell is classified by its centre colour (the 4 grey levels it spans average to +1.5).
+  // Each 6-bit cell is classified by its centre colour (the 4 grey levels it spans average to
+  // +1.5).
   for (int b = 0; b < 64; ++b) {
     for (int g = 0; g < 64; ++g) {
       for (int r = 0; r < 64; ++r) {

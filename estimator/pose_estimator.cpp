@@ -15,12 +15,11 @@ const EstimatorParams& validated(const EstimatorParams& p) {
 
 void check_image(const cv::Mat& image, const hal::CameraModel& camera, const char* which) {
   if (image.type() != CV_8UC3 || image.cols != camera.width_px || image.rows != camera.height_px) {
-    throw std::invalid_argument(std::string(which) + " image is " + std::to_string(image.cols) +
-                                "x" + std::to_string(image.rows) + " (" +
-                                std::to_string(image.channels()) +
-                                " channels) but the calibration says " +
-                                std::to_string(camera.width_px) + "x" +
-                                std::to_string(camera.height_px) + " colour");
+    throw std::invalid_argument(
+        std::string(which) + " image is " + std::to_string(image.cols) + "x" +
+        std::to_string(image.rows) + " (" + std::to_string(image.channels()) +
+        " channels) but the calibration says " + std::to_string(camera.width_px) + "x" +
+        std::to_string(camera.height_px) + " colour");
   }
 }
 

@@ -15,7 +15,7 @@ struct VehicleGeometry {
   Eigen::Vector3d left_camera_position_body_m{0.22, -0.089, -0.05};
   double camera_tilt_down_deg = 0.0;  // positive pitches the optical axis down
   // Tip of the docking probe in the body frame; it mates along the body x axis.
-  Eigen::Vector3d probe_tip_body_m{0.35, 0.0, 0.05};
+  Eigen::Vector3d probe_tip_body_m{0.55, 0.0, 0.05};
   ThrusterLayout thrusters = ThrusterLayout::bluerov2_heavy();
 
   Eigen::Isometry3d T_body_cl() const;

@@ -3,6 +3,7 @@
 
 #include <cstdio>
 #include <filesystem>
+#include <opencv2/core/utility.hpp>
 #include <opencv2/imgcodecs.hpp>
 
 #include "drivers/replay/recording_format.hpp"
@@ -53,27 +54,17 @@ bool DiveRecorder::open(const std::string& folder, const std::string& calibratio
   return true;
 }
 
-bool DiveRecorder::write_image(const cv::Mat& bgr, const std::string& relative,
-                               std::string& error) {
+bool DiveRecorder::store(const std::vector<unsigned char>& png, const std::string& relative,
+                         std::string& error) {
   const fs::path final_path = fs::path(folder_) / relative;
   const fs::path temp_path =
       final_path.parent_path() / ("." + final_path.filename().string() + ".tmp");
-  try {
-    // Fast compression: recording keeps up with the cameras; PNG stays lossless either way.
-    if (!cv::imencode(".png", bgr, encoded_, {cv::IMWRITE_PNG_COMPRESSION, 1})) {
-      error = final_path.string() + ": PNG encoding failed";
-      return false;
-    }
-  } catch (const cv::Exception& e) {
-    error = final_path.string() + ": PNG encoding failed: " + e.what();
-    return false;
-  }
   std::FILE* f = std::fopen(temp_path.c_str(), "wb");
   if (f == nullptr) {
     error = temp_path.string() + ": cannot create";
     return false;
   }
-  const bool written = std::fwrite(encoded_.data(), 1, encoded_.size(), f) == encoded_.size();
+  const bool written = std::fwrite(png.data(), 1, png.size(), f) == png.size();
   const bool closed = std::fclose(f) == 0;
   std::error_code ec;
   if (!written || !closed) {
@@ -106,8 +97,28 @@ bool DiveRecorder::write(const hal::StereoFrame& frame, std::string& error) {
   row.right_stamp = frame.right_stamp;
   row.left_file = std::string("left/") + name;
   row.right_file = std::string("right/") + name;
-  if (!write_image(frame.left_bgr, row.left_file, error) ||
-      !write_image(frame.right_bgr, row.right_file, error)) {
+
+  // PNG encoding dominates (~18 ms per 640x480 image on a busy 2-core machine): do both sides
+  // at once. Fast compression keeps up with the cameras; PNG stays lossless either way.
+  bool encoded[2] = {false, false};
+  cv::parallel_for_(cv::Range(0, 2), [&](const cv::Range& range) {
+    for (int side = range.start; side < range.end; ++side) {
+      try {
+        encoded[side] = cv::imencode(".png", side == 0 ? frame.left_bgr : frame.right_bgr,
+                                     encoded_[side], {cv::IMWRITE_PNG_COMPRESSION, 1});
+      } catch (const cv::Exception&) {
+        encoded[side] = false;
+      }
+    }
+  });
+  for (int side = 0; side < 2; ++side) {
+    if (!encoded[side]) {
+      error = (fs::path(folder_) / (side == 0 ? row.left_file : row.right_file)).string() +
+              ": PNG encoding failed";
+      return false;
+    }
+  }
+  if (!store(encoded_[0], row.left_file, error) || !store(encoded_[1], row.right_file, error)) {
     return false;
   }
   // The row goes in last: an indexed pair is always complete on disk.

@@ -23,7 +23,8 @@ class DiveRecorder {
   // frames.csv; copies `calibration_file` in as stereo_calibration.yaml unless it is empty.
   // False with `error` naming the folder or file.
   bool open(const std::string& folder, const std::string& calibration_file, std::string& error);
-  // Appends one pair (PNG, lossless). Not for the real-time path: encoding allocates.
+  // Appends one pair (PNG, lossless; left and right encoded in parallel). Not for the
+  // real-time path: encoding allocates.
   bool write(const hal::StereoFrame& frame, std::string& error);
   void close();
 
@@ -32,12 +33,13 @@ class DiveRecorder {
   const std::string& folder() const { return folder_; }
 
  private:
-  bool write_image(const cv::Mat& bgr, const std::string& relative, std::string& error);
+  bool store(const std::vector<unsigned char>& png, const std::string& relative,
+             std::string& error);
 
   std::string folder_;
   std::ofstream csv_;
   std::size_t frames_written_ = 0;
-  std::vector<unsigned char> encoded_;  // reused between frames
+  std::vector<unsigned char> encoded_[2];  // left, right; reused between frames
 };
 
 }  // namespace rovctl::drivers

@@ -19,6 +19,9 @@ bool MockSensors::read(SensorReadings& r) {
   }
   const VehicleState& s = world_.state();
   r.stamp = now;
+  // The charger's current sense: live once the probe is captured in the socket.
+  r.dock_contact_valid = true;
+  r.dock_contact = world_.docking().docked;
   r.depth_valid = true;
   r.attitude_valid = true;
   if (FaultInjection::active(faults_.sensor_nan_at_s, now)) {

@@ -17,7 +17,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
-const std::string kCalibration = std::string(ROVCTL_SOURCE_DIR) + "/deploy/config/stereo_calibration.yaml";
+const std::string kCalibration =
+    std::string(ROVCTL_SOURCE_DIR) + "/deploy/config/stereo_calibration.yaml";
 
 struct Files {
   fs::path dir = fs::temp_directory_path() / "rovctl_command_estimate_test";
@@ -131,9 +132,9 @@ TEST(CommandEstimate, BadCalibrationAndConfigNameTheFileAndKey) {
   EXPECT_NE(error_of<ConfigError>({"--config", range, "--left", f.left, "--right", f.right})
                 .find("estimator.ga.population: 1 is out of range"),
             std::string::npos);
-  const std::string crossed = f.write(
-      "crossed.yaml",
-      "calibration: " + kCalibration + "\nestimator:\n  search:\n    z_min_m: 2.0\n");
+  const std::string crossed =
+      f.write("crossed.yaml",
+              "calibration: " + kCalibration + "\nestimator:\n  search:\n    z_min_m: 2.0\n");
   EXPECT_NE(error_of<ConfigError>({"--config", crossed, "--left", f.left, "--right", f.right})
                 .find("estimator.search.z"),
             std::string::npos);
@@ -147,8 +148,8 @@ TEST(CommandEstimate, UsageErrors) {
   const Files f;
   EXPECT_NE(error_of<UsageError>({"--config", f.config, "--left", f.left}).find("--right"),
             std::string::npos);
-  EXPECT_NE(error_of<UsageError>({"--config", f.config, "--left", f.left, "--right", f.right,
-                                  "--frames", "0"})
+  EXPECT_NE(error_of<UsageError>(
+                {"--config", f.config, "--left", f.left, "--right", f.right, "--frames", "0"})
                 .find("--frames"),
             std::string::npos);
   EXPECT_NE(error_of<UsageError>({"--bogus"}).find("--bogus"), std::string::npos);

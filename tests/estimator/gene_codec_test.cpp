@@ -29,10 +29,9 @@ TEST(GeneCodec, OutsideTheVolumeIsClampedAndReported) {
   Gene g;
   EXPECT_FALSE(codec.encode(hal::make_pose({0.0, 0.0, 3.0}, Eigen::Quaterniond::Identity()), g));
   EXPECT_EQ(g.field[2], kFieldMax);
-  EXPECT_FALSE(codec.encode(
-      hal::make_pose({0.0, 0.0, 0.5},
-                     Eigen::Quaterniond(Eigen::AngleAxisd(2.5, Eigen::Vector3d::UnitX()))),
-      g));
+  EXPECT_FALSE(codec.encode(hal::make_pose({0.0, 0.0, 0.5}, Eigen::Quaterniond(Eigen::AngleAxisd(
+                                                                2.5, Eigen::Vector3d::UnitX()))),
+                            g));
 }
 
 TEST(GeneCodec, EveryGeneDecodesToARotation) {

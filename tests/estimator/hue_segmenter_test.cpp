@@ -12,7 +12,7 @@ namespace {
 using testing::TestScene;
 
 struct Rates {
-  double recall = 0.0;           // pixels of each sphere's disc labelled with its colour
+  double recall = 0.0;          // pixels of each sphere's disc labelled with its colour
   double false_positive = 0.0;  // background pixels labelled with any colour
 };
 

@@ -35,8 +35,8 @@ TEST(MarkerFitness, TruePoseScoresHighAndOffPosesClearlyLess) {
     const double best = f.fitness.evaluate(truth);
     EXPECT_GE(best, 0.9) << i;
     // 20 mm sideways; along the depth axis 50 mm (depth is seen through disparity only).
-    for (const Eigen::Vector3d& d : {Eigen::Vector3d(0.02, 0, 0), Eigen::Vector3d(0, -0.02, 0),
-                                    Eigen::Vector3d(0, 0, 0.05)}) {
+    for (const Eigen::Vector3d& d :
+         {Eigen::Vector3d(0.02, 0, 0), Eigen::Vector3d(0, -0.02, 0), Eigen::Vector3d(0, 0, 0.05)}) {
       Eigen::Isometry3d off = truth;
       off.translation() += d;
       EXPECT_LT(f.fitness.evaluate(off), best - 0.2) << i << " " << d.transpose();
@@ -45,7 +45,8 @@ TEST(MarkerFitness, TruePoseScoresHighAndOffPosesClearlyLess) {
     // (A 10 degree tilt out of the marker's plane moves them by under 7 mm in depth only: the
     // sampled fitness barely sees it; the improved mode's centroid refinement does.)
     Eigen::Isometry3d off = truth;
-    off.linear() = truth.linear() * Eigen::AngleAxisd(10.0 * M_PI / 180.0, Eigen::Vector3d::UnitZ());
+    off.linear() =
+        truth.linear() * Eigen::AngleAxisd(10.0 * M_PI / 180.0, Eigen::Vector3d::UnitZ());
     EXPECT_LT(f.fitness.evaluate(off), best - 0.15) << i;
   }
 }

@@ -101,13 +101,13 @@ TEST(StereoCalibration, BadFilesNameFileAndKey) {
   const std::string bad_shape =
       temp_file("bad_shape.yaml", replaced(kGood, "rows: 3\n   cols: 1", "rows: 1\n   cols: 1"));
   EXPECT_NE(error_of(bad_shape).find("key 'T'"), std::string::npos) << error_of(bad_shape);
-  const std::string wide_d = temp_file(
-      "wide_d.yaml", replaced(kGood, "cols: 4\n   dt: d\n   data: [ -0.1, 0.01, 0., 0. ]",
-                              "cols: 2\n   dt: d\n   data: [ -0.1, 0.01 ]"));
+  const std::string wide_d =
+      temp_file("wide_d.yaml", replaced(kGood, "cols: 4\n   dt: d\n   data: [ -0.1, 0.01, 0., 0. ]",
+                                        "cols: 2\n   dt: d\n   data: [ -0.1, 0.01 ]"));
   EXPECT_NE(error_of(wide_d).find("key 'D2' has shape"), std::string::npos) << error_of(wide_d);
-  const std::string not_rotation = temp_file(
-      "not_rotation.yaml", replaced(kGood, "[ 1., 0., 0., 0., 1., 0., 0., 0., 1. ]",
-                                    "[ 2., 0., 0., 0., 1., 0., 0., 0., 1. ]"));
+  const std::string not_rotation =
+      temp_file("not_rotation.yaml", replaced(kGood, "[ 1., 0., 0., 0., 1., 0., 0., 0., 1. ]",
+                                              "[ 2., 0., 0., 0., 1., 0., 0., 0., 1. ]"));
   EXPECT_NE(error_of(not_rotation).find("key 'R' is not a rotation"), std::string::npos);
   const std::string millimetres =
       temp_file("mm.yaml", replaced(kGood, "[ -0.178, 0., 0. ]", "[ -178., 0., 0. ]"));
@@ -115,13 +115,13 @@ TEST(StereoCalibration, BadFilesNameFileAndKey) {
   const std::string no_size =
       temp_file("no_size.yaml", replaced(kGood, "image_size: [ 640, 480 ]", "foo: 1"));
   EXPECT_NE(error_of(no_size).find("missing key 'image_size'"), std::string::npos);
-  const std::string bad_focal = temp_file(
-      "bad_focal.yaml", replaced(kGood, "[ 500., 0., 320.", "[ -500., 0., 320."));
+  const std::string bad_focal =
+      temp_file("bad_focal.yaml", replaced(kGood, "[ 500., 0., 320.", "[ -500., 0., 320."));
   EXPECT_NE(error_of(bad_focal).find("K1"), std::string::npos);
   const std::string garbage = temp_file("garbage.yaml", "%YAML:1.0\n---\nK1: [ unclosed\n");
   EXPECT_NE(error_of(garbage).find(garbage), std::string::npos);
-  const std::string not_matrix =
-      temp_file("not_matrix.yaml", replaced(kGood, "D1: !!opencv-matrix", "D1: 7\nX: !!opencv-matrix"));
+  const std::string not_matrix = temp_file(
+      "not_matrix.yaml", replaced(kGood, "D1: !!opencv-matrix", "D1: 7\nX: !!opencv-matrix"));
   EXPECT_NE(error_of(not_matrix).find("D1"), std::string::npos);
 }
 
