@@ -1,0 +1,91 @@
+// The application's tick against the mock HAL: it docks on a fixed seed, it allocates nothing
+// after start-up, and run-time faults put the vehicle in the safe state.
+#include "app/vehicle_loop.hpp"
+
+#include <gtest/gtest.h>
+
+#include "app/allocation_counter.hpp"
+#include "app/app_config.hpp"
+#include "app/docking_trial.hpp"
+#include "estimator/stereo_calibration.hpp"
+#include "hal/mock/simulated_hal.hpp"
+#include "hal/mock/trial_generator.hpp"
+
+namespace rovctl::app {
+namespace {
+
+struct Fixture {
+  AppConfig config = load_app_config(default_config_path());
+  hal::StereoRig rig = estimator::load_stereo_calibration(config.calibration_file);
+};
+
+TEST(VehicleLoop, TickAllocatesNothingAfterStartUp) {
+  Fixture f;
+  const hal::mock::TrialGenerator generator(f.config.sim, f.config.vehicle, f.rig, f.config.marker);
+  const hal::mock::TrialConditions trial = generator.make(0, 1);
+  hal::mock::SimulatedHal hal(hal::mock::params_for_trial(f.config.sim, trial), f.config.vehicle,
+                              f.config.station, f.rig, f.config.marker, trial);
+  std::string error;
+  ASSERT_TRUE(hal.camera().open(error)) << error;
+  ASSERT_TRUE(hal.bus().open(error)) << error;
+  auto scheduler = std::make_unique<CyclicScheduler>(hal.clock(), f.config.scheduler);
+  TelemetryRing ring(1024);
+  VehicleLoop loop(f.config, f.rig, hal.camera(), hal.bus(), &hal.sensors(), *scheduler, &ring, 1);
+  ASSERT_TRUE(loop.arm(error)) << error;
+  // Start-up: the first ticks size the images and warm every path.
+  scheduler->run([&](const TickInfo& info) { return loop.tick(info); }, 30);
+  ASSERT_GT(loop.recognised_ticks(), 0u) << "the marker should be seen at the start of trial 0";
+  std::uint64_t allocations = 0;
+  scheduler->run(
+      [&](const TickInfo& info) {
+        AllocationProbe probe;
+        const bool more = loop.tick(info);
+        allocations += probe.allocations();
+        return more;
+      },
+      300);
+  EXPECT_EQ(allocations, 0u) << "allocations in 300 ticks of the application loop";
+  EXPECT_EQ(ring.size(), std::min<std::size_t>(ring.capacity(), 330));
+}
+
+TEST(VehicleLoop, CameraLossMakesTheVehicleSafe) {
+  Fixture f;
+  f.config.sim.faults.camera_lost_at_s = 2.0;
+  const hal::mock::TrialGenerator generator(f.config.sim, f.config.vehicle, f.rig, f.config.marker);
+  const TrialResult r = run_docking_trial(f.config, f.rig, generator.make(0, 1), TrialOptions{});
+  EXPECT_FALSE(r.docked);
+  EXPECT_EQ(r.failsafe, "camera lost");
+  EXPECT_LT(r.sim_time_s, 4.0) << "the loop ends soon after the safe state";
+  bool logged = false;
+  for (const auto& e : r.events) logged = logged || e.find("FAILSAFE") != std::string::npos;
+  EXPECT_TRUE(logged);
+}
+
+TEST(VehicleLoop, BusTimeoutMakesTheVehicleSafe) {
+  Fixture f;
+  f.config.sim.faults.bus_timeout_at_s = 2.0;
+  const hal::mock::TrialGenerator generator(f.config.sim, f.config.vehicle, f.rig, f.config.marker);
+  const TrialResult r = run_docking_trial(f.config, f.rig, generator.make(0, 1), TrialOptions{});
+  EXPECT_FALSE(r.docked);
+  EXPECT_EQ(r.failsafe, "thruster bus fault");
+}
+
+// The closed loop on a fixed seed: the real estimator on rendered images, the real controller,
+// the simulated vehicle in a current. It must dock within the tolerances.
+TEST(VehicleLoop, DocksOnAFixedSeed) {
+  Fixture f;
+  const hal::mock::TrialGenerator generator(f.config.sim, f.config.vehicle, f.rig, f.config.marker);
+  TrialOptions options;
+  options.keep_records = true;
+  const TrialResult r = run_docking_trial(f.config, f.rig, generator.make(2, 1), options);
+  ASSERT_TRUE(r.docked) << "final state " << r.final_state << " after " << r.sim_time_s << " s";
+  EXPECT_TRUE(r.mission_docked);
+  EXPECT_LE(r.lateral_error_mm, kSuccessLateralMm);
+  EXPECT_LE(std::abs(r.yaw_error_deg), kSuccessYawDeg);
+  EXPECT_EQ(r.overruns, 0u);
+  EXPECT_FALSE(r.records.empty());
+  EXPECT_LT(r.estimate_error_mm_median, 10.0);
+}
+
+}  // namespace
+}  // namespace rovctl::app
