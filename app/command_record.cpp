@@ -9,6 +9,7 @@
 #include "app/cli_args.hpp"
 #include "app/commands.hpp"
 #include "app/errors.hpp"
+#include "app/vehicle_backends.hpp"
 #include "drivers/camera_factory.hpp"
 #include "drivers/monotonic_clock.hpp"
 #include "drivers/replay/dive_recorder.hpp"
@@ -20,15 +21,6 @@ namespace {
 volatile std::sig_atomic_t g_stop = 0;
 
 extern "C" void request_stop(int) { g_stop = 1; }
-
-// TODO(mock camera): `camera.backend: mock` is the simulated camera of hal/mock; its owner wires
-// it here (build it on `clock` from `config`). Until then recording it is refused with a clear
-// message, while v4l2 and replay work.
-std::unique_ptr<hal::StereoCamera> make_mock_camera(const AppConfig& config, hal::Clock& clock) {
-  (void)config;
-  (void)clock;
-  return nullptr;
-}
 
 // Ctrl-C or systemd's SIGTERM end a recording cleanly: the last pair is complete on disk.
 class StopOnSignal {
@@ -65,15 +57,10 @@ int command_record(const Words& words) {
   const std::string out = args.get("--out");
   const AppConfig config = load_app_config(args.get("--config"));
 
-  drivers::MonotonicClock clock;
-  std::unique_ptr<hal::StereoCamera> camera =
-      config.camera.backend == "mock" ? make_mock_camera(config, clock)
-                                      : drivers::make_stereo_camera(config.camera, clock);
-  if (!camera) {
-    throw ConfigError(config.config_file +
-                      ": camera.backend: recording the mock camera is not wired yet; use "
-                      "backend v4l2 or replay");
-  }
+  // The mock camera records the simulated world (in real time) at its start pose.
+  VehicleBackends hw = make_vehicle_backends(config, load_rig(config));
+  hal::Clock& clock = *hw.clock;
+  hal::StereoCamera* camera = hw.camera;
   std::string error;
   if (!camera->open(error)) throw ConfigError(error);
   const std::string camera_name = camera->name();  // with what open() negotiated
