@@ -112,7 +112,7 @@ int run_study_command(const std::vector<std::string>& words, std::ostream& out, 
 
   ProgressPrinter printer(err, &err == &std::cerr && ::isatty(STDERR_FILENO) == 1);
   const StudyResult result = run_study(
-      rig, config.marker, config.estimator, hal::mock::RenderOptions{}, settings,
+      rig, config.marker, config.estimator, config.sim.camera.render, settings,
       [&printer](const std::string& phase, long done, long total) { printer(phase, done, total); });
   printer.finish();
   const StudyFiles files = write_study_outputs(out_dir, result, command_line);

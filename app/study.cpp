@@ -245,7 +245,7 @@ StudySettings StudySettings::full(const hal::StereoRig& rig) {
 StudySettings StudySettings::quick_subset(const hal::StereoRig& rig) {
   StudySettings s = base_settings(rig, true);
   s.seeds = 3;
-  s.time_limit_s = 0.99;  // 30 frames
+  s.time_limit_s = 0.66;  // 20 frames
   s.frame_bank = 16;
   s.fig8_repeats = 3;
   for (int population : {10, 20, 40, 60, 80}) {
@@ -331,6 +331,11 @@ TimeStats time_stats(const std::vector<int>& frames_to_goal, const std::vector<d
   t.p90_s = percentile(times, 0.9);
   t.wall_median_s = walls.empty() ? kInf : percentile(walls, 0.5);
   t.cpu_median_s = cpus.empty() ? kInf : percentile(cpus, 0.5);
+  std::vector<double> successes;
+  for (double v : times) {
+    if (!std::isinf(v)) successes.push_back(v);
+  }
+  t.success_median_s = successes.empty() ? kInf : percentile(successes, 0.5);
   return t;
 }
 
@@ -368,7 +373,8 @@ std::vector<CombinationSummary> summarise_combinations(
 bool faster(const CombinationSummary& a, const CombinationSummary& b) {
   if (a.fitness.median_s != b.fitness.median_s) return a.fitness.median_s < b.fitness.median_s;
   if (a.fitness.p90_s != b.fitness.p90_s) return a.fitness.p90_s < b.fitness.p90_s;
-  return a.fitness.failures < b.fitness.failures;
+  if (a.fitness.failures != b.fitness.failures) return a.fitness.failures < b.fitness.failures;
+  return a.fitness.success_median_s < b.fitness.success_median_s;
 }
 
 std::vector<CombinationSummary> best_per_population(const std::vector<CombinationSummary>& rows) {
@@ -479,6 +485,7 @@ StudyResult run_study(const hal::StereoRig& rig, const hal::MarkerModel& marker,
   StudyResult result;
   result.settings = settings;
   result.machine = machine_description();
+  result.noise_sigma = render.noise_sigma;
   if (progress) progress("rendering frames", 0, settings.frame_bank);
   const FrameBank bank =
       render_bank(rig, marker, render, settings.T_cl_marker, std::max(1, settings.frame_bank));

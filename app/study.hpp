@@ -34,9 +34,9 @@ struct StudyVariant {
 
 struct StudySettings {
   bool quick = false;
-  int seeds = 8;                  // runs per combination and variant
+  int seeds = 10;                 // runs per combination and variant
   double frame_period_s = 0.033;  // one frame: the paper's 33 ms control period
-  double time_limit_s = 1.5;      // a run that has not converged by then counts as a failure
+  double time_limit_s = 0.99;     // 30 frames; a run not converged by then is a failure
   int threads = 2;                // independent runs in parallel
   int frame_bank = 32;            // pre-rendered noisy stereo pairs, cycled through by every run
   double goal_fitness = 0.6;      // the paper's recognition threshold
@@ -117,8 +117,9 @@ struct TimeStats {
   int failures = 0;
   double median_s = 0.0;
   double p90_s = 0.0;
-  double wall_median_s = 0.0;  // median compute time to the goal over the successful runs
-  double cpu_median_s = 0.0;   // the same in thread CPU time
+  double wall_median_s = 0.0;     // median compute time to the goal over the successful runs
+  double cpu_median_s = 0.0;      // the same in thread CPU time
+  double success_median_s = 0.0;  // median time over the successful runs only (inf: none)
 };
 
 struct CombinationSummary {
@@ -147,7 +148,8 @@ struct StudyResult {
   double fig8_wall_s = 0.0;
   double runs_wall_s = 0.0;
   double wall_s = 0.0;
-  std::string machine;  // CPU model and core count
+  std::string machine;       // CPU model and core count
+  double noise_sigma = 0.0;  // the rendered frames' sensor noise, grey levels
 
   // Generations per frame of this machine for a mode and setting (from `budgets`, else `fig8`).
   int generations_per_frame(const std::string& mode, const GaCombination& c) const;
@@ -162,7 +164,8 @@ TimeStats time_stats(const std::vector<int>& frames_to_goal, const std::vector<d
 std::vector<CombinationSummary> summarise_combinations(
     const std::vector<StudyRun>& runs, const std::string& variant,
     const std::vector<GaCombination>& combinations, double frame_period_s);
-// Faster to the goal fitness: lower median, then lower p90, then fewer failures.
+// Faster to the goal fitness: lower median, then lower p90, then fewer failures, then lower
+// median of the successful runs (which ranks settings where most runs fail).
 bool faster(const CombinationSummary& a, const CombinationSummary& b);
 std::vector<CombinationSummary> best_per_population(const std::vector<CombinationSummary>& rows);
 VariantSummary summarise_variant(const StudyVariant& variant, const std::vector<StudyRun>& runs,

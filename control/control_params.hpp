@@ -19,9 +19,11 @@ struct ServoParams {
   Eigen::Vector3d kp_linear{80.0, 90.0, 90.0};  // N/m
   Eigen::Vector3d kd_linear{60.0, 60.0, 70.0};  // N s/m
   Eigen::Vector3d ki_linear{20.0, 30.0, 30.0};  // N/(m s)
-  Eigen::Vector3d kp_angular{4.0, 4.0, 8.0};    // N m/rad
-  Eigen::Vector3d kd_angular{1.0, 1.0, 3.0};    // N m s/rad
-  Eigen::Vector3d ki_angular{0.0, 0.0, 1.0};    // N m/(rad s)
+  // Yaw: the camera latency, the frame period and the thrusters' lag add up to ~0.15 s, so the
+  // yaw loop must cross over near 3 rad/s (kp 8 / kd 3 limit-cycled at +-0.03 rad, 0.8 Hz).
+  Eigen::Vector3d kp_angular{4.0, 4.0, 3.0};  // N m/rad
+  Eigen::Vector3d kd_angular{1.0, 1.0, 2.5};  // N m s/rad
+  Eigen::Vector3d ki_angular{0.0, 0.0, 0.3};  // N m/(rad s)
   // Anti-windup: the integral term's magnitude per axis never exceeds these.
   Eigen::Vector3d integral_limit_linear_n{8.0, 8.0, 8.0};
   Eigen::Vector3d integral_limit_angular_nm{1.0, 1.0, 1.0};
@@ -97,7 +99,7 @@ struct MissionParams {
   // ALIGN: hold the stand-off until the error stays within these for hold_frames frames.
   double align_lateral_m = 0.008;
   double align_axial_m = 0.03;
-  double align_yaw_rad = 0.03;
+  double align_yaw_rad = 0.04;
   int align_hold_frames = 20;
   double align_timeout_s = 60.0;
   // DOCK: the set-point advances along the docking axis at this speed to this far past the
@@ -106,6 +108,9 @@ struct MissionParams {
   double dock_overshoot_m = 0.05;
   double dock_abort_lateral_m = 0.03;
   double dock_abort_yaw_rad = 0.10;
+  // Consecutive frames beyond those limits before the dock aborts: one outlier estimate (a
+  // rotated pose that scores well near the socket) must not throw away a good approach.
+  int dock_abort_frames = 3;
   double dock_timeout_s = 40.0;
   // Near the socket the marker leaves the cameras' view: within this remaining distance a lost
   // marker does not abort, the vehicle pushes along the docking axis for up to blind_timeout_s.

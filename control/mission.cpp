@@ -90,6 +90,7 @@ void Mission::enter(MissionState to, std::chrono::nanoseconds now, const char* r
   entered_ = now;
   hold_frames_ = 0;
   contact_frames_ = 0;
+  dock_off_frames_ = 0;
   blind_since_ = std::chrono::nanoseconds{-1};
   if (to == MissionState::search) seen_frames_ = 0;
   if (to == MissionState::abort && aborts_ > p_.max_retries) {
@@ -179,11 +180,15 @@ MissionOutput Mission::update(const MissionInput& in) {
       } else if (blind_zone && blind_since_.count() < 0) {
         blind_since_ = in.now;
       }
+      const bool lateral_off = seen && err.lateral_m > p_.dock_abort_lateral_m;
+      const bool yaw_off = seen && std::abs(err.yaw_rad) > p_.dock_abort_yaw_rad;
+      if (seen) dock_off_frames_ = (lateral_off || yaw_off) ? dock_off_frames_ + 1 : 0;
+      const bool off_limits = dock_off_frames_ >= p_.dock_abort_frames;
       if (contact_frames_ >= p_.contact_frames) {
         enter(MissionState::docked, in.now, vision_contact ? "contact (vision)" : "contact");
-      } else if (seen && err.lateral_m > p_.dock_abort_lateral_m) {
+      } else if (off_limits && lateral_off) {
         enter(MissionState::abort, in.now, "lateral error limit");
-      } else if (seen && std::abs(err.yaw_rad) > p_.dock_abort_yaw_rad) {
+      } else if (off_limits && yaw_off) {
         enter(MissionState::abort, in.now, "yaw error limit");
       } else if (!seen && !blind_zone && lost) {
         enter(MissionState::abort, in.now, "marker lost");

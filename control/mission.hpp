@@ -110,6 +110,7 @@ class Mission {
   int unseen_frames_ = 0;
   int hold_frames_ = 0;
   int contact_frames_ = 0;
+  int dock_off_frames_ = 0;  // consecutive seen frames past the dock abort limits
   bool have_last_ = false;
   double last_axial_m_ = 0.0;
   Eigen::Vector3d docked_axis_body_ = Eigen::Vector3d::UnitX();  // docking axis when docked

@@ -134,7 +134,7 @@ TEST(StudySettings, FullStudyHasThePapersSixtyCombinations) {
   const StudySettings full = StudySettings::full(rig);
   EXPECT_EQ(full.combinations.size(), 60u);
   EXPECT_FALSE(full.quick);
-  EXPECT_EQ(full.time_limit_frames(), 45);
+  EXPECT_EQ(full.time_limit_frames(), 30);
   EXPECT_NEAR(full.T_cl_marker.translation().z(), 0.415, 1e-12);
   EXPECT_NEAR(full.T_cl_marker.translation().x(), 0.089, 1e-9);  // midway between the cameras
   const StudySettings quick = StudySettings::quick_subset(rig);

@@ -193,16 +193,34 @@ TEST_F(MissionTest, DockAbortsOnLateralAndYawLimits) {
   {
     Mission m = make();
     to_dock(m);
+    for (int k = 1; k < params.dock_abort_frames; ++k) {
+      tick(m, true, seen_at({0.3, 0, 1.5 * params.dock_abort_lateral_m}));
+      EXPECT_EQ(m.state(), MissionState::dock);
+    }
     tick(m, true, seen_at({0.3, 0, 1.5 * params.dock_abort_lateral_m}));
     EXPECT_EQ(m.state(), MissionState::abort);
   }
   {
     Mission m = make();
     to_dock(m);
-    tick(m, true, seen_at({0.3, 0, 0}, 1.5 * params.dock_abort_yaw_rad));
+    for (int k = 0; k < params.dock_abort_frames; ++k)
+      tick(m, true, seen_at({0.3, 0, 0}, 1.5 * params.dock_abort_yaw_rad));
     EXPECT_EQ(m.state(), MissionState::abort);
     drain(m);
   }
+}
+
+TEST_F(MissionTest, OneOutlierEstimateDoesNotAbortTheDock) {
+  params.dock_abort_frames = 3;
+  Mission m = make();
+  to_dock(m);
+  for (int k = 0; k < 5; ++k) {
+    tick(m, true, seen_at({0.3, 0, 0}, 1.5 * params.dock_abort_yaw_rad));
+    tick(m, true, seen_at({0.3, 0, 0}));
+    tick(m, true, seen_at({0.3, 0, 2.0 * params.dock_abort_lateral_m}));
+    tick(m, true, seen_at({0.3, 0, 0}));
+  }
+  EXPECT_EQ(m.state(), MissionState::dock);
 }
 
 TEST_F(MissionTest, DockPushesBlindNearTheSocket) {
