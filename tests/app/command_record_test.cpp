@@ -1,5 +1,6 @@
 // `rovctl record` end to end on the replay backend: a recorded dive re-recorded pair for pair,
-// and the start-up errors (exit 2) for a bad camera, a bad --out and the unwired mock camera.
+// and the start-up errors (exit 2) for a bad camera, a bad --out and a short recording of the mock
+// camera.
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -102,8 +103,11 @@ TEST_F(CommandRecord, StartUpErrorsNameTheProblem) {
     EXPECT_NE(std::string(e.what()).find("/dev/video-rovctl-none-l"), std::string::npos)
         << e.what();
   }
-  EXPECT_THROW(command_record({"--config", config(""), "--out", (dir_ / "z").string()}),
-               ConfigError);  // mock: not wired yet
+  // The mock camera records the simulated world.
+  EXPECT_EQ(
+      command_record({"--config", config(""), "--out", (dir_ / "z").string(), "--frames", "2"}),
+      kExitOk);
+  EXPECT_TRUE(std::filesystem::exists(dir_ / "z" / "frames.csv"));
   EXPECT_THROW(command_record({"--config", cfg}), UsageError);
   EXPECT_THROW(command_record({"--config", cfg, "--out", "o", "--frames", "0"}), UsageError);
 }
