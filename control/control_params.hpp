@@ -21,8 +21,8 @@ struct ServoParams {
   Eigen::Vector3d ki_linear{20.0, 30.0, 30.0};  // N/(m s)
   // Yaw: the camera latency, the frame period and the thrusters' lag add up to ~0.15 s, so the
   // yaw loop must cross over near 3 rad/s (kp 8 / kd 3 limit-cycled at +-0.03 rad, 0.8 Hz).
-  Eigen::Vector3d kp_angular{4.0, 4.0, 3.0};  // N m/rad
-  Eigen::Vector3d kd_angular{1.0, 1.0, 2.5};  // N m s/rad
+  Eigen::Vector3d kp_angular{4.0, 4.0, 2.0};  // N m/rad
+  Eigen::Vector3d kd_angular{1.0, 1.0, 2.0};  // N m s/rad
   Eigen::Vector3d ki_angular{0.0, 0.0, 0.3};  // N m/(rad s)
   // Anti-windup: the integral term's magnitude per axis never exceeds these.
   Eigen::Vector3d integral_limit_linear_n{8.0, 8.0, 8.0};
