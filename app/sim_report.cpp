@@ -9,6 +9,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "app/atomic_file.hpp"
 #include "app/json_writer.hpp"
 #include "app/plot.hpp"
 #include "control/mission.hpp"
@@ -23,16 +24,6 @@ double percentile(std::vector<double> v, double p) {
   const auto lo = static_cast<std::size_t>(std::floor(pos));
   const auto hi = std::min(lo + 1, v.size() - 1);
   return v[lo] + (pos - static_cast<double>(lo)) * (v[hi] - v[lo]);
-}
-
-void write_atomically(const std::string& path, const std::string& text) {
-  const std::string tmp = path + ".tmp";
-  {
-    std::ofstream f(tmp, std::ios::binary);
-    f << text;
-    if (!f) throw std::runtime_error(path + ": cannot write");
-  }
-  std::filesystem::rename(tmp, path);
 }
 
 }  // namespace
@@ -186,8 +177,8 @@ void write_sim_outputs(const std::string& dir, const std::vector<TrialResult>& r
           << ',' << r.overruns << ',' << r.jitter_p99_ms << ',' << r.estimator_ms_mean << ','
           << r.recognised_fraction << ',' << r.estimate_error_mm_median << '\n';
   }
-  write_atomically(dir + "/trials.csv", table.str());
-  write_atomically(dir + "/summary.json", summary_json(summary) + "\n");
+  write_file_atomically(dir + "/trials.csv", table.str());
+  write_file_atomically(dir + "/summary.json", summary_json(summary) + "\n");
   char name[64];
   for (const TrialResult& r : results) {
     if (r.records.empty()) continue;
@@ -199,7 +190,7 @@ void write_sim_outputs(const std::string& dir, const std::vector<TrialResult>& r
       csv += '\n';
     }
     std::snprintf(name, sizeof(name), "/trial_%03d.csv", r.conditions.index);
-    write_atomically(dir + name, csv);
+    write_file_atomically(dir + name, csv);
     if (r.conditions.index < plot_trials) {
       std::snprintf(name, sizeof(name), "/trial_%03d.png", r.conditions.index);
       plot_trial(r, dir + name);

@@ -13,6 +13,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "app/atomic_file.hpp"
 #include "app/json_writer.hpp"
 #include "app/plot.hpp"
 
@@ -73,16 +74,6 @@ std::string stats_cell(const TimeStats& t) {
     cell += format(", successes' median %s", secs(t.success_median_s).c_str());
   }
   return cell;
-}
-
-void write_atomically(const std::string& path, const std::string& text) {
-  const std::string tmp = path + ".tmp";
-  {
-    std::ofstream f(tmp, std::ios::binary);
-    f << text;
-    if (!f) throw std::runtime_error(path + ": cannot write");
-  }
-  std::filesystem::rename(tmp, path);
 }
 
 void save_png_atomically(const Plot& plot, const std::string& path) {
@@ -638,8 +629,8 @@ StudyFiles write_study_outputs(const std::string& dir, const StudyResult& result
   files.fig8_png = (fs::path(dir) / "fig8_generations.png").string();
   files.fig9_png = (fs::path(dir) / "fig9_convergence.png").string();
   files.pose_png = (fs::path(dir) / "fig9_pose.png").string();
-  write_atomically(files.csv, study_runs_csv(result));
-  write_atomically(files.report, study_report_markdown(result, command_line));
+  write_file_atomically(files.csv, study_runs_csv(result));
+  write_file_atomically(files.report, study_report_markdown(result, command_line));
   plot_study_fig8(result, files.fig8_png);
   plot_study_fig9(result, false, files.fig9_png);
   plot_study_fig9(result, true, files.pose_png);
