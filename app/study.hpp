@@ -34,7 +34,7 @@ struct StudyVariant {
 
 struct StudySettings {
   bool quick = false;
-  int seeds = 10;                 // runs per combination and variant
+  int seeds = 8;                  // runs per combination and variant (fits 10 min on 2 idle cores)
   double frame_period_s = 0.033;  // one frame: the paper's 33 ms control period
   double time_limit_s = 0.99;     // 30 frames; a run not converged by then is a failure
   int threads = 2;                // independent runs in parallel
