@@ -319,3 +319,42 @@ TEST_F(MissionTest, StandOffLiesBackAlongTheDockingAxis) {
 
 }  // namespace
 }  // namespace rovctl::control
+
+namespace rovctl::control {
+namespace {
+
+// The innovation gate: a one-frame jump is not "seen" (the servo does not act on it); a jump that
+// persists is accepted after outlier_max_frames.
+TEST(MissionGate, RejectsOneFrameJumpsAndAcceptsPersistentOnes) {
+  MissionParams params;
+  params.outlier_jump_m = 0.1;
+  params.outlier_max_frames = 2;
+  const hal::VehicleGeometry geometry;
+  const Eigen::Isometry3d T_body_cl = geometry.T_body_cl();
+  const Eigen::Isometry3d docked =
+      hal::docked_T_cl_marker(T_body_cl, geometry.probe_tip_body_m, hal::DockingStation{});
+  Mission m(params, T_body_cl, docked, geometry.probe_tip_body_m);
+  auto input = [](std::chrono::nanoseconds now, const Eigen::Vector3d& t) {
+    MissionInput in;
+    in.now = now;
+    in.recognised = true;
+    in.fitness = 0.95;
+    in.T_cl_marker = Eigen::Isometry3d::Identity();
+    in.T_cl_marker.translation() = t;
+    return in;
+  };
+  std::chrono::nanoseconds now{0};
+  const Eigen::Vector3d here(0.0, 0.0, 1.0), there(0.3, 0.0, 1.0);
+  for (int i = 0; i < 5; ++i) m.update(input(now += std::chrono::milliseconds(33), here));
+  ASSERT_EQ(m.state(), MissionState::approach);
+  EXPECT_TRUE(m.update(input(now += std::chrono::milliseconds(33), here)).errors_valid);
+  EXPECT_FALSE(m.update(input(now += std::chrono::milliseconds(33), there)).errors_valid);
+  EXPECT_TRUE(m.update(input(now += std::chrono::milliseconds(33), here)).errors_valid);
+  EXPECT_FALSE(m.update(input(now += std::chrono::milliseconds(33), there)).errors_valid);
+  EXPECT_FALSE(m.update(input(now += std::chrono::milliseconds(33), there)).errors_valid);
+  EXPECT_TRUE(m.update(input(now += std::chrono::milliseconds(33), there)).errors_valid)
+      << "a jump that persists past outlier_max_frames is accepted";
+}
+
+}  // namespace
+}  // namespace rovctl::control
