@@ -73,11 +73,6 @@ void describe(hal::ParamVisitor& v, ControlParams& p) {
 void describe(hal::ParamVisitor& v, MissionParams& p) {
   v.param("min_fitness", p.min_fitness,
           {"-", 0.0, 1.0, "estimate fitness at or above which the marker counts as recognised"});
-  v.param("outlier_jump_m", p.outlier_jump_m,
-          {"m", 0.005, 10.0, "an estimate this far from the last accepted one is an outlier"});
-  v.param("outlier_max_frames", p.outlier_max_frames,
-          {"frames", 0, 1000,
-           "outliers rejected in a row before the new position is accepted (0: no gate)"});
   v.param("acquire_frames", p.acquire_frames,
           {"frames", 1, 1000, "consecutive recognised frames that end SEARCH"});
   v.param("lost_frames", p.lost_frames,

@@ -84,11 +84,9 @@ void describe(hal::ParamVisitor& v, ControlParams& p);
 // point (the probe tip) in the marker frame: lateral = off the docking axis, axial = along it.
 struct MissionParams {
   // Recognition: fitness at or above this counts as seeing the marker.
-  double min_fitness = 0.8;     // above the paper's 0.6: 0.6-0.8 estimates were often outliers
-  double outlier_jump_m = 0.1;  // largest plausible marker motion between frames
-  int outlier_max_frames = 0;   // a jump that persists this long is accepted (0: no gate)
-  int acquire_frames = 3;       // consecutive recognised frames to leave SEARCH
-  int lost_frames = 8;          // consecutive unrecognised frames that abort APPROACH/ALIGN/DOCK
+  double min_fitness = 0.6;
+  int acquire_frames = 3;  // consecutive recognised frames to leave SEARCH
+  int lost_frames = 8;     // consecutive unrecognised frames that abort APPROACH/ALIGN/DOCK
   // SEARCH: constant yaw moment (sets a slow scan against the yaw drag); sign = direction.
   double search_yaw_moment_nm = 0.6;
   double search_timeout_s = 0.0;  // 0 = search forever

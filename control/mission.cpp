@@ -112,20 +112,8 @@ MissionOutput Mission::update(const MissionInput& in) {
     started_ = true;
     entered_ = in.now;
   }
-  bool seen = in.recognised && in.fitness >= p_.min_fitness && in.T_cl_marker.matrix().allFinite();
-  // Innovation gate: the marker cannot jump further than outlier_jump_m between two frames, so
-  // such a jump is an estimator outlier (it would kick the servo's derivative) unless it persists.
-  if (!seen && unseen_frames_ + 1 >= p_.lost_frames) have_gate_pose_ = false;
-  if (seen && have_gate_pose_ &&
-      (in.T_cl_marker.translation() - gate_position_m_).norm() > p_.outlier_jump_m &&
-      gate_rejections_ < p_.outlier_max_frames) {
-    seen = false;
-    ++gate_rejections_;
-  } else if (seen) {
-    gate_position_m_ = in.T_cl_marker.translation();
-    have_gate_pose_ = true;
-    gate_rejections_ = 0;
-  }
+  const bool seen =
+      in.recognised && in.fitness >= p_.min_fitness && in.T_cl_marker.matrix().allFinite();
   MissionOutput out;
   Errors err{0.0, 0.0, 0.0};
   if (seen) {

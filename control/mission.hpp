@@ -115,9 +115,6 @@ class Mission {
   double last_axial_m_ = 0.0;
   Eigen::Vector3d docked_axis_body_ = Eigen::Vector3d::UnitX();  // docking axis when docked
   std::chrono::nanoseconds blind_since_{-1};
-  bool have_gate_pose_ = false;
-  Eigen::Vector3d gate_position_m_ = Eigen::Vector3d::Zero();
-  int gate_rejections_ = 0;
 
   std::array<MissionEvent, kEventCapacity> events_{};
   std::size_t event_head_ = 0;
