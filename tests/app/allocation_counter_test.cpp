@@ -28,6 +28,9 @@ TEST(AllocationCounter, CountsNewAndContainers) {
 }
 
 TEST(AllocationCounter, CountsEigenDynamicMatrices) {
+#if defined(__SANITIZE_ADDRESS__)
+  GTEST_SKIP() << "under ASan the hooks replace operator new only; Eigen's malloc is not seen";
+#endif
   AllocationProbe probe;
   Eigen::MatrixXd m = Eigen::MatrixXd::Identity(20, 20);
   EXPECT_GE(probe.allocations(), 1u);
