@@ -6,6 +6,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "hal/sphere_rim.hpp"
+
 namespace rovctl::estimator {
 
 PoseRefiner::PoseRefiner(const hal::StereoRig& rig, const hal::MarkerModel& marker)
@@ -13,21 +15,15 @@ PoseRefiner::PoseRefiner(const hal::StereoRig& rig, const hal::MarkerModel& mark
 
 bool PoseRefiner::silhouette_centroid(const hal::CameraModel& camera, const Eigen::Vector3d& c,
                                       double r, Eigen::Vector2d& uv_px) {
-  const double d = c.norm();
-  if (d <= r * 1.05 || c.z() <= r) return false;
-  const Eigen::Vector3d axis = c / d;
-  const Eigen::Vector3d e1 = axis.unitOrthogonal();
-  const Eigen::Vector3d e2 = axis.cross(e1);
-  const Eigen::Vector3d rim_centre = c * (1.0 - r * r / (d * d));
-  const double rim_radius = r * std::sqrt(d * d - r * r) / d;
+  hal::SphereRim rim;
+  if (!hal::sphere_rim(c, r, rim)) return false;
   constexpr int kRim = 32;
   Eigen::Vector2d first, prev, p;
   double area2 = 0.0, cx = 0.0, cy = 0.0;
   for (int k = 0; k <= kRim; ++k) {
     if (k < kRim) {
       const double phi = 2.0 * M_PI * k / kRim;
-      if (!camera.project(rim_centre + rim_radius * (std::cos(phi) * e1 + std::sin(phi) * e2), p))
-        return false;
+      if (!camera.project(rim.point(phi), p)) return false;
       if (k == 0) first = p;
     } else {
       p = first;

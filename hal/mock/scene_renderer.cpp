@@ -8,6 +8,8 @@
 #include <opencv2/core.hpp>
 #include <stdexcept>
 
+#include "hal/sphere_rim.hpp"
+
 namespace rovctl::hal::mock {
 namespace {
 
@@ -22,19 +24,12 @@ std::uint64_t splitmix64(std::uint64_t x) {
 
 // Pixel bounding box of a sphere's silhouette, from points on its rim (distortion included).
 bool silhouette_box(const CameraModel& cam, const Eigen::Vector3d& c, double r, cv::Rect& box) {
-  const double d = c.norm();
-  if (d <= r * 1.05 || c.z() <= r) return false;
-  const Eigen::Vector3d axis = c / d;
-  const Eigen::Vector3d e1 = axis.unitOrthogonal();
-  const Eigen::Vector3d e2 = axis.cross(e1);
-  const Eigen::Vector3d rim_centre = c * (1.0 - r * r / (d * d));
-  const double rim_radius = r * std::sqrt(d * d - r * r) / d;
+  SphereRim rim;
+  if (!sphere_rim(c, r, rim)) return false;
   double u0 = 1e9, u1 = -1e9, v0 = 1e9, v1 = -1e9;
   for (int k = 0; k < 24; ++k) {
-    const double phi = 2.0 * M_PI * k / 24.0;
-    const Eigen::Vector3d p = rim_centre + rim_radius * (std::cos(phi) * e1 + std::sin(phi) * e2);
     Eigen::Vector2d uv;
-    if (!cam.project(p, uv)) return false;
+    if (!cam.project(rim.point(2.0 * M_PI * k / 24.0), uv)) return false;
     u0 = std::min(u0, uv.x());
     u1 = std::max(u1, uv.x());
     v0 = std::min(v0, uv.y());
