@@ -58,6 +58,11 @@ int command_run(const Words& words) {
   VehicleLoop loop(config, rig, *hw.camera, *hw.bus, hw.sensors, *scheduler,
                    config.telemetry.enabled ? &ring : nullptr, 1);
 
+  if (config.control.attitude.enabled && !config.control.servo.six_dof && hw.sensors == nullptr) {
+    std::cerr << "rovctl run: warning: control.attitude.enabled, but these backends give no "
+                 "attitude: roll and pitch are only damped by vision\n";
+  }
+
   // Real-time set-up after the allocations above; refusals are warnings.
   const RealtimeSetupResult rt = apply_realtime_setup(config.scheduler.realtime);
   for (const auto& w : rt.warnings) std::cerr << "rovctl run: warning: " << w << "\n";

@@ -46,6 +46,7 @@ VehicleLoop::VehicleLoop(const AppConfig& config, const hal::StereoRig& rig,
       telemetry_(telemetry),
       estimator_(rig, config.marker, config.estimator, seed),
       servo_(config.control.servo, config.vehicle.T_body_cl()),
+      attitude_(config.control.attitude),
       allocator_(config.vehicle.thrusters, config.control.allocation),
       mission_(config.mission, config.vehicle.T_body_cl(),
                hal::docked_T_cl_marker(config.vehicle.T_body_cl(), config.vehicle.probe_tip_body_m,
@@ -116,9 +117,8 @@ bool VehicleLoop::tick(const TickInfo& info) {
   {
     auto timer = scheduler_.stage(Stage::control);
     bool contact = false;
-    if (sensors_ != nullptr && sensors_->read(readings_)) {
-      contact = readings_.dock_contact_valid && readings_.dock_contact;
-    }
+    const bool have_readings = sensors_ != nullptr && sensors_->read(readings_);
+    if (have_readings) contact = readings_.dock_contact_valid && readings_.dock_contact;
     control::MissionInput in;
     in.now = now;
     in.recognised = seen;
@@ -138,6 +138,14 @@ bool VehicleLoop::tick(const TickInfo& info) {
         wrench = servo_.hold_wrench_body();
         if (out.use_override) wrench += out.wrench_override_body;
         last_servo_time_ = std::chrono::nanoseconds{-1};
+      }
+      // Roll and pitch from the IMU in every state: the vision servo only damps them, and a
+      // tipped vehicle loses the marker.
+      Eigen::Vector2d level_nm;
+      if (!config_.control.servo.six_dof && have_readings &&
+          attitude_.update(readings_, level_nm)) {
+        wrench[3] = level_nm.x();
+        wrench[4] = level_nm.y();
       }
     }
     control::FailsafeInput fs;

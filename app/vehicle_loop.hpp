@@ -14,6 +14,7 @@
 #include "app/cyclic_scheduler.hpp"
 #include "app/spsc_ring.hpp"
 #include "app/telemetry.hpp"
+#include "control/attitude_stabilizer.hpp"
 #include "control/control_allocation_pseudo_inverse.hpp"
 #include "control/failsafe.hpp"
 #include "control/mission.hpp"
@@ -85,6 +86,7 @@ class VehicleLoop {
 
   estimator::PoseEstimator estimator_;
   control::PdVisualServo servo_;
+  control::AttitudeStabilizer attitude_;
   control::ControlAllocator allocator_;
   control::Mission mission_;
   control::Failsafe failsafe_;

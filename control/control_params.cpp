@@ -28,6 +28,10 @@ void describe(hal::ParamVisitor& v, ServoParams& p) {
           {"rad", 0.01, 3.2, "rotation error norm seen by P and I"});
   v.param("rate_cutoff_hz", p.rate_cutoff_hz,
           {"Hz", 0.05, 15.0, "cut-off of the low-pass on the differentiated error"});
+  v.param("max_rate_linear_mps", p.max_rate_linear_mps,
+          {"m/s", 0.0, 20.0, "position-error rate clamp before the low-pass (0 = none)"});
+  v.param("max_rate_angular_radps", p.max_rate_angular_radps,
+          {"rad/s", 0.0, 50.0, "angle-error rate clamp before the low-pass (0 = none)"});
   v.param("max_update_gap_s", p.max_update_gap_s,
           {"s", 0.01, 5.0, "a longer gap between updates restarts the derivative"});
   v.param("net_buoyancy_n", p.net_buoyancy_n,
@@ -61,9 +65,26 @@ void describe(hal::ParamVisitor& v, FailsafeParams& p) {
           {"disarm", "neutral"});
 }
 
+void describe(hal::ParamVisitor& v, AttitudeParams& p) {
+  v.param("enabled", p.enabled,
+          "hold roll and pitch level from the IMU (when the servo is not six_dof)");
+  v.param("roll_kp_nm_per_rad", p.roll_kp_nm_per_rad,
+          {"N m/rad", 0.0, 200.0, "roll moment per radian of roll"});
+  v.param("roll_kd_nms_per_rad", p.roll_kd_nms_per_rad,
+          {"N m s/rad", 0.0, 200.0, "roll moment per rad/s of roll rate (gyro)"});
+  v.param("pitch_kp_nm_per_rad", p.pitch_kp_nm_per_rad,
+          {"N m/rad", 0.0, 200.0, "pitch moment per radian of pitch"});
+  v.param("pitch_kd_nms_per_rad", p.pitch_kd_nms_per_rad,
+          {"N m s/rad", 0.0, 200.0, "pitch moment per rad/s of pitch rate (gyro)"});
+  v.param("max_moment_nm", p.max_moment_nm,
+          {"N m", 0.0, 200.0, "largest levelling moment per axis"});
+}
+
 void describe(hal::ParamVisitor& v, ControlParams& p) {
   v.section("servo", "PD visual servo on the relative-pose error",
             [&p](hal::ParamVisitor& s) { describe(s, p.servo); });
+  v.section("attitude", "roll and pitch levelling from the IMU",
+            [&p](hal::ParamVisitor& s) { describe(s, p.attitude); });
   v.section("allocation", "thruster allocation (weighted pseudo-inverse)",
             [&p](hal::ParamVisitor& s) { describe(s, p.allocation); });
   v.section("failsafe", "run-time fault monitors and the safe state",

@@ -22,6 +22,16 @@ V clip_norm(const V& v, double max_norm) {
   return n > max_norm ? V(v * (max_norm / n)) : v;
 }
 
+// 0 in the config: no clamp.
+RateFilter::Vector rate_limits(const ServoParams& p) {
+  const double inf = std::numeric_limits<double>::infinity();
+  const double linear = p.max_rate_linear_mps > 0.0 ? p.max_rate_linear_mps : inf;
+  const double angular = p.max_rate_angular_radps > 0.0 ? p.max_rate_angular_radps : inf;
+  return (RateFilter::Vector() << Eigen::Vector3d::Constant(linear),
+          Eigen::Vector3d::Constant(angular))
+      .finished();
+}
+
 }  // namespace
 
 PoseError pose_error_body(const Eigen::Isometry3d& T_body_cl,
@@ -48,7 +58,7 @@ PoseError pose_error_body(const Eigen::Isometry3d& T_body_cl,
 }
 
 PdVisualServo::PdVisualServo(const ServoParams& params, const Eigen::Isometry3d& T_body_cl)
-    : p_(params), T_body_cl_(T_body_cl), rate_(params.rate_cutoff_hz) {
+    : p_(params), T_body_cl_(T_body_cl), rate_(params.rate_cutoff_hz, rate_limits(params)) {
   kp_ << p_.kp_linear, p_.kp_angular;
   kd_ << p_.kd_linear, p_.kd_angular;
   ki_ << p_.ki_linear, p_.ki_angular;

@@ -14,6 +14,13 @@ RateFilter::RateFilter(double cutoff_hz) {
   tau_s_ = 1.0 / (2.0 * M_PI * cutoff_hz);
 }
 
+RateFilter::RateFilter(double cutoff_hz, const Vector& max_abs_rate) : RateFilter(cutoff_hz) {
+  if (!(max_abs_rate.array() > 0.0).all()) {
+    throw std::invalid_argument("rate filter: rate limits must be positive");
+  }
+  max_abs_rate_ = max_abs_rate;
+}
+
 const RateFilter::Vector& RateFilter::update(const Vector& value, double dt_s) {
   if (!primed_) {
     previous_ = value;
@@ -23,7 +30,8 @@ const RateFilter::Vector& RateFilter::update(const Vector& value, double dt_s) {
   }
   if (!(dt_s > 0.0)) return rate_;
   const double alpha = dt_s / (tau_s_ + dt_s);
-  rate_ += alpha * ((value - previous_) / dt_s - rate_);
+  const Vector raw = ((value - previous_) / dt_s).cwiseMax(-max_abs_rate_).cwiseMin(max_abs_rate_);
+  rate_ += alpha * (raw - rate_);
   previous_ = value;
   return rate_;
 }

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <limits>
 
 namespace rovctl::control {
 
@@ -11,6 +12,10 @@ class RateFilter {
   using Vector = Eigen::Matrix<double, 6, 1>;
 
   explicit RateFilter(double cutoff_hz);
+  // max_abs_rate: each axis's difference quotient is clamped to +-this before the low-pass, so
+  // one outlier sample (a pose estimate off by decimetres) cannot pass as a rate the vehicle
+  // could never have; infinity = no limit. Throws std::invalid_argument if not positive.
+  RateFilter(double cutoff_hz, const Vector& max_abs_rate);
 
   // The filtered d(value)/dt after this sample, `dt_s` after the previous one. The first sample
   // (after construction or reset) only primes the filter: the rate stays zero. A non-positive dt
@@ -24,6 +29,7 @@ class RateFilter {
 
  private:
   double tau_s_;
+  Vector max_abs_rate_ = Vector::Constant(std::numeric_limits<double>::infinity());
   bool primed_ = false;
   Vector previous_ = Vector::Zero();
   Vector rate_ = Vector::Zero();

@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <random>
+#include <stdexcept>
 
 namespace rovctl::control {
 namespace {
@@ -77,6 +78,29 @@ TEST(RateFilter, NonPositiveDtLeavesTheStateAlone) {
 TEST(RateFilter, RejectsBadCutOff) {
   EXPECT_THROW(RateFilter(0.0), std::invalid_argument);
   EXPECT_THROW(RateFilter(-1.0), std::invalid_argument);
+}
+
+TEST(RateFilter, RateLimitBoundsAnOutliersKick) {
+  // A 0.3 m outlier at 30 Hz: unclamped it reads as 9 m/s; clamped at 0.8 m/s the kick is
+  // at most the clamp, while a real 0.2 m/s motion still passes whole.
+  const double dt = 1.0 / 30.0;
+  RateFilter free(3.0);
+  RateFilter limited(3.0, V::Constant(0.8));
+  free.update(V::Zero(), dt);
+  limited.update(V::Zero(), dt);
+  const double kick_free = free.update(V::Constant(0.3), dt)[0];
+  const double kick_limited = limited.update(V::Constant(0.3), dt)[0];
+  EXPECT_GT(kick_free, 3.0);
+  EXPECT_GT(kick_limited, 0.0);
+  EXPECT_LE(kick_limited, 0.8);
+
+  RateFilter ramp(3.0, V::Constant(0.8));
+  for (int k = 0; k < 200; ++k) ramp.update(V::Constant(0.2 * k * dt), dt);
+  EXPECT_NEAR(ramp.rate()[0], 0.2, 1e-9);
+}
+
+TEST(RateFilter, RejectsNonPositiveRateLimits) {
+  EXPECT_THROW(RateFilter(3.0, V::Zero()), std::invalid_argument);
 }
 
 }  // namespace
