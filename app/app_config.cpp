@@ -39,6 +39,12 @@ AppConfig load_app_config(const std::string& file) {
   AppConfig config;
   load_yaml_file(file, [&config](hal::ParamVisitor& v) { describe(v, config); });
   config.config_file = file;
+  // Cross-field checks the per-key ranges cannot express, before any command touches hardware.
+  try {
+    config.estimator.validate();
+  } catch (const std::invalid_argument& e) {
+    throw ConfigError(file + ": " + e.what());
+  }
   return config;
 }
 

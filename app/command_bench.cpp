@@ -16,8 +16,8 @@
 #include "app/commands.hpp"
 #include "app/errors.hpp"
 #include "app/json_writer.hpp"
+#include "app/vehicle_backends.hpp"
 #include "estimator/pose_estimator.hpp"
-#include "estimator/stereo_calibration.hpp"
 #include "hal/mock/scene_renderer.hpp"
 #include "hal/pose.hpp"
 
@@ -186,17 +186,7 @@ int command_bench(const Words& words) {
   const std::string config_file =
       args.has("--config") ? args.get("--config") : default_config_path();
   const AppConfig config = load_app_config(config_file);
-  try {
-    config.estimator.validate();
-  } catch (const std::invalid_argument& e) {
-    throw ConfigError(config_file + ": " + e.what());
-  }
-  hal::StereoRig rig;
-  try {
-    rig = estimator::load_stereo_calibration(config.calibration_file);
-  } catch (const std::exception& e) {
-    throw ConfigError(e.what());
-  }
+  const hal::StereoRig rig = load_rig(config);
   const int n_pairs = static_cast<int>(args.get_int("--pairs", 100, 3, 100000));
   const int cap = static_cast<int>(args.get_int("--frame-cap", 100, 1, 100000));
 

@@ -45,7 +45,6 @@ int command_check(const Words& words) {
   AppConfig config;
   try {
     config = load_app_config(args.get("--config"));
-    config.estimator.validate();
     check.line(true, "config", config.config_file);
   } catch (const std::exception& e) {
     check.line(false, "config", e.what());

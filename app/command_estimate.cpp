@@ -12,8 +12,8 @@
 #include "app/commands.hpp"
 #include "app/errors.hpp"
 #include "app/json_writer.hpp"
+#include "app/vehicle_backends.hpp"
 #include "estimator/pose_estimator.hpp"
-#include "estimator/stereo_calibration.hpp"
 
 namespace rovctl::app {
 namespace {
@@ -52,17 +52,7 @@ int command_estimate(const Words& words) {
     }
   }
   const AppConfig config = load_app_config(args.get("--config"));
-  try {
-    config.estimator.validate();
-  } catch (const std::invalid_argument& e) {
-    throw ConfigError(config.config_file + ": " + e.what());
-  }
-  hal::StereoRig rig;
-  try {
-    rig = estimator::load_stereo_calibration(config.calibration_file);
-  } catch (const std::exception& e) {
-    throw ConfigError(e.what());  // names the calibration file and the key
-  }
+  const hal::StereoRig rig = load_rig(config);
   const cv::Mat left = read_image(args.get("--left"), rig.left, config.calibration_file);
   const cv::Mat right = read_image(args.get("--right"), rig.right, config.calibration_file);
   // Enough frames to converge: the improved mode needs a few, the paper's GA alone many more.

@@ -15,7 +15,7 @@
 #include "app/errors.hpp"
 #include "app/study.hpp"
 #include "app/study_report.hpp"
-#include "estimator/stereo_calibration.hpp"
+#include "app/vehicle_backends.hpp"
 
 namespace rovctl::app {
 namespace {
@@ -79,17 +79,7 @@ int run_study_command(const std::vector<std::string>& words, std::ostream& out, 
   const std::string config_path =
       args.has("--config") ? args.get("--config") : default_config_path();
   const AppConfig config = load_app_config(config_path);
-  try {
-    config.estimator.validate();
-  } catch (const std::invalid_argument& e) {
-    throw ConfigError(config.config_file + ": " + e.what());
-  }
-  hal::StereoRig rig;
-  try {
-    rig = estimator::load_stereo_calibration(config.calibration_file);
-  } catch (const std::exception& e) {
-    throw ConfigError(e.what());  // names the calibration file and the key
-  }
+  const hal::StereoRig rig = load_rig(config);
 
   StudySettings settings = quick ? StudySettings::quick_subset(rig) : StudySettings::full(rig);
   settings.seeds = static_cast<int>(args.get_int("--seeds", settings.seeds, 1, 10000));

@@ -225,6 +225,11 @@ PlotPanel& PlotPanel::y_limits(double lo, double hi) {
   return *this;
 }
 
+PlotPanel& PlotPanel::legend_outside() {
+  legend_outside_ = true;
+  return *this;
+}
+
 struct PlotPanel::Frame {
   double x_lo, x_hi, y_lo, y_hi;
   AxisTicks xt, yt;
@@ -310,8 +315,21 @@ void PlotPanel::render(cv::Mat& img, int left_px) const {
     const double eps = (r.hi - r.lo) * 1e-9;
     return v >= r.lo - eps && v <= r.hi + eps;
   };
+  std::vector<std::size_t> entries;
+  for (std::size_t i = 0; i < series_.size(); ++i) {
+    if (!series_[i].name.empty()) entries.push_back(i);
+  }
+  int text_w = 0;
+  for (const std::size_t i : entries) {
+    text_w = std::max(text_w, text_size(series_[i].name, kLabelFont, kLegendScale).width);
+  }
+  const int row_h = 21;
+  const int box_w = 10 + 30 + 8 + text_w + 12;
+  const int box_h = 8 + row_h * static_cast<int>(entries.size()) + 4;
+  const bool outside = legend_outside_ && !entries.empty();
   const Rect plot{static_cast<double>(left_px >= 0 ? left_px : f.left_px),
-                  title_.empty() ? 16.0 : 42.0, static_cast<double>(W - 28),
+                  title_.empty() ? 16.0 : 42.0,
+                  static_cast<double>(W - 28 - (outside ? box_w + 14 : 0)),
                   static_cast<double>(H - (x_label_.empty() ? 34 : 60))};
   auto px = [&](double x) { return plot.x0 + (x - xa.lo) / (xa.hi - xa.lo) * (plot.x1 - plot.x0); };
   auto py = [&](double y) { return plot.y1 - (y - ya.lo) / (ya.hi - ya.lo) * (plot.y1 - plot.y0); };
@@ -341,7 +359,8 @@ void PlotPanel::render(cv::Mat& img, int left_px) const {
     draw_dashed(img, plot.x0, y, plot.x1, kReference);
     if (!h.label.empty()) {
       const int w = text_size(h.label, kLabelFont, kTickScale).width;
-      put_text_halo(img, h.label, plot.x1 - w - 6, y - 10, kTickScale, kReference);
+      // Below the line: labelled points sitting on a threshold carry their text above it.
+      put_text_halo(img, h.label, plot.x1 - w - 6, y + 14, kTickScale, kReference);
     }
   }
 
@@ -436,27 +455,17 @@ void PlotPanel::render(cv::Mat& img, int left_px) const {
     }
   }
 
-  // Legend in the corner covering the fewest data points.
-  std::vector<std::size_t> entries;
-  for (std::size_t i = 0; i < series_.size(); ++i) {
-    if (!series_[i].name.empty()) entries.push_back(i);
-  }
+  // Legend right of the axes, or in the corner covering the fewest data points.
   if (entries.empty()) return;
-  int text_w = 0;
-  for (const std::size_t i : entries) {
-    text_w = std::max(text_w, text_size(series_[i].name, kLabelFont, kLegendScale).width);
-  }
-  const int row_h = 21;
-  const int box_w = 10 + 30 + 8 + text_w + 12;
-  const int box_h = 8 + row_h * static_cast<int>(entries.size()) + 4;
   const double m = 10.0;
   const cv::Point2d corners[] = {{plot.x1 - m - box_w, plot.y0 + m},
                                  {plot.x0 + m, plot.y0 + m},
                                  {plot.x1 - m - box_w, plot.y1 - m - box_h},
-                                 {plot.x0 + m, plot.y1 - m - box_h}};
-  std::size_t best = 0;
+                                 {plot.x0 + m, plot.y1 - m - box_h},
+                                 {plot.x1 + 14, plot.y0}};
+  std::size_t best = outside ? 4 : 0;
   std::size_t best_count = std::numeric_limits<std::size_t>::max();
-  for (std::size_t k = 0; k < 4; ++k) {
+  for (std::size_t k = 0; k < 4 && !outside; ++k) {
     const cv::Rect2d r(corners[k].x, corners[k].y, box_w, box_h);
     std::size_t count = 0;
     for (const auto& p : marker_points) count += r.contains(p) ? 1 : 0;

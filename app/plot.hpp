@@ -57,6 +57,9 @@ class PlotPanel {
   // Fixed axis limits instead of the data's.
   PlotPanel& x_limits(double lo, double hi);
   PlotPanel& y_limits(double lo, double hi);
+  // The legend in a column right of the axes instead of in the emptiest corner inside them:
+  // for panels whose data fill every corner (points labelled near all four).
+  PlotPanel& legend_outside();
 
   const std::string& title() const { return title_; }
   const std::vector<Series>& series() const { return series_; }
@@ -81,6 +84,7 @@ class PlotPanel {
   std::vector<std::pair<double, std::string>> categories_;
   std::optional<std::pair<double, double>> x_limits_;
   std::optional<std::pair<double, double>> y_limits_;
+  bool legend_outside_ = false;
 };
 
 // A figure: an optional title over panels stacked top to bottom, all the same width.

@@ -42,8 +42,10 @@ SimSummary summarise(const std::vector<TrialResult>& results) {
       yaw.push_back(std::abs(r.yaw_error_deg));
     }
     if (r.estimate_error_mm_median >= 0) est_err.push_back(r.estimate_error_mm_median);
+    s.ticks += r.ticks;
     s.overruns += r.overruns;
     s.tick_jitter_ms_p99 = std::max(s.tick_jitter_ms_p99, r.jitter_p99_ms);
+    s.tick_jitter_ms_max = std::max(s.tick_jitter_ms_max, r.jitter_max_ms);
     estimator_ms += r.estimator_ms_mean;
   }
   s.success_rate = s.trials > 0 ? static_cast<double>(s.docked) / s.trials : 0.0;
@@ -67,6 +69,8 @@ std::string summary_json(const SimSummary& s) {
       .field("overruns", static_cast<long>(s.overruns))
       .field("tick_jitter_ms_p99", s.tick_jitter_ms_p99)
       .field("captured", s.captured)
+      .field("ticks", static_cast<long>(s.ticks))
+      .field("tick_jitter_ms_max", s.tick_jitter_ms_max)
       .field("estimator_ms_mean", s.estimator_ms_mean)
       .field("estimate_error_mm_median", s.estimate_error_mm_median)
       .end_object();
@@ -89,12 +93,12 @@ std::string summary_text(const SimSummary& s, const std::vector<TrialResult>& re
   std::snprintf(
       line, sizeof(line),
       "\ndocked %d of %d (%.0f %%)  time to dock median %.1f s  lateral error p95 %.1f mm  "
-      "yaw error p95 %.2f deg\noverruns %llu  tick jitter p99 %.3f ms  estimator %.2f ms "
-      "per tick  estimate error median %.1f mm\n",
+      "yaw error p95 %.2f deg\nticks %llu  overruns %llu  tick jitter p99 %.3f ms (max %.3f)  "
+      "estimator %.2f ms per tick  estimate error median %.1f mm\n",
       s.docked, s.trials, 100.0 * s.success_rate, s.time_to_dock_s_median,
       s.final_lateral_error_mm_p95, s.final_yaw_error_deg_p95,
-      static_cast<unsigned long long>(s.overruns), s.tick_jitter_ms_p99, s.estimator_ms_mean,
-      s.estimate_error_mm_median);
+      static_cast<unsigned long long>(s.ticks), static_cast<unsigned long long>(s.overruns),
+      s.tick_jitter_ms_p99, s.tick_jitter_ms_max, s.estimator_ms_mean, s.estimate_error_mm_median);
   o << line;
   return o.str();
 }
@@ -191,7 +195,9 @@ void write_sim_outputs(const std::string& dir, const std::vector<TrialResult>& r
     }
     std::snprintf(name, sizeof(name), "/trial_%03d.csv", r.conditions.index);
     write_file_atomically(dir + name, csv);
-    if (r.conditions.index < plot_trials) {
+    // The first few, and every trial that did not dock within tolerance: those are the ones a
+    // person needs to look at.
+    if (r.conditions.index < plot_trials || !r.success) {
       std::snprintf(name, sizeof(name), "/trial_%03d.png", r.conditions.index);
       plot_trial(r, dir + name);
     }

@@ -17,8 +17,10 @@ struct SimSummary {
   double time_to_dock_s_median = -1.0;
   double final_lateral_error_mm_p95 = -1.0;
   double final_yaw_error_deg_p95 = -1.0;
+  std::uint64_t ticks = 0;  // over all trials
   std::uint64_t overruns = 0;
   double tick_jitter_ms_p99 = 0.0;  // worst trial's p99
+  double tick_jitter_ms_max = 0.0;  // worst tick of any trial
   double estimator_ms_mean = 0.0;
   double estimate_error_mm_median = -1.0;
 };
@@ -28,7 +30,8 @@ std::string summary_json(const SimSummary& s);
 std::string summary_text(const SimSummary& s, const std::vector<TrialResult>& results);
 
 // trials.csv (one row per trial), trial_NNN.csv (every tick) and trial_NNN.png (plots) into
-// `dir`, each written to a temporary name and renamed. Plots for the first `plot_trials` trials.
+// `dir`, each written to a temporary name and renamed. Plots for the first `plot_trials` trials and
+// for every trial that did not dock within tolerance.
 void write_sim_outputs(const std::string& dir, const std::vector<TrialResult>& results,
                        const SimSummary& summary, int plot_trials);
 

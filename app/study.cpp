@@ -478,10 +478,12 @@ Fig8Curve measure_fig8(const hal::StereoRig& rig, const hal::MarkerModel& marker
 }
 
 StudyResult run_study(const hal::StereoRig& rig, const hal::MarkerModel& marker,
-                      const estimator::EstimatorParams& base,
+                      const estimator::EstimatorParams& configured,
                       const hal::mock::RenderOptions& render, const StudySettings& settings,
                       const StudyProgress& progress) {
   const Clock::time_point start = Clock::now();
+  estimator::EstimatorParams base = configured;
+  base.search = settings.search;
   StudyResult result;
   result.settings = settings;
   result.machine = machine_description();

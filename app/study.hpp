@@ -46,6 +46,9 @@ struct StudySettings {
   int fig8_repeats = 7;  // timings per point; the minimum is kept (load only ever adds time)
   std::vector<GaCombination> combinations;
   std::vector<StudyVariant> variants;
+  // The GA's search volume: the estimator's default, the paper's Table 2 area (x +-400 mm,
+  // y +-200 mm), not a docking config's wider one, so runs start as randomly as the paper's.
+  estimator::SearchVolume search;
   // The paper's set-up: marker fixed 415 mm ahead, midway between the cameras, 10 mm below them.
   Eigen::Isometry3d T_cl_marker = Eigen::Isometry3d::Identity();
 
@@ -185,6 +188,7 @@ Fig8Curve measure_fig8(const hal::StereoRig& rig, const hal::MarkerModel& marker
                        const std::vector<cv::Mat>& right, const StudyProgress& progress);
 
 // Everything: frame bank, Fig. 8 per mode, the runs on `settings.threads` threads, summaries.
+// The estimator runs with `base` but in `settings.search`.
 StudyResult run_study(const hal::StereoRig& rig, const hal::MarkerModel& marker,
                       const estimator::EstimatorParams& base,
                       const hal::mock::RenderOptions& render, const StudySettings& settings,

@@ -13,8 +13,8 @@ namespace rovctl::app {
 hal::StereoRig load_rig(const AppConfig& config) {
   try {
     return estimator::load_stereo_calibration(config.calibration_file);
-  } catch (const std::invalid_argument& e) {
-    throw ConfigError(e.what());
+  } catch (const std::exception& e) {
+    throw ConfigError(e.what());  // names the calibration file and the key
   }
 }
 

@@ -18,6 +18,7 @@
 #include "drivers/replay/dive_recorder.hpp"
 #include "estimator/stereo_calibration.hpp"
 #include "hal/mock/scene_renderer.hpp"
+#include "test_tools.hpp"
 
 extern char** environ;
 
@@ -25,10 +26,6 @@ namespace rovctl::app {
 namespace {
 
 namespace fs = std::filesystem;
-
-bool have_pymodbus() {
-  return std::system("/usr/bin/python3 -c 'import pymodbus.server.async_io' >/dev/null 2>&1") == 0;
-}
 
 struct Controller {
   pid_t pid = -1;
@@ -66,8 +63,7 @@ std::string write_recording(const std::string& dir, const std::string& calibrati
 }
 
 TEST(CommandRun, ReplayAndModbusControllerHold30Hz) {
-  if (!have_pymodbus())
-    GTEST_SKIP() << "/usr/bin/python3 has no pymodbus (apt install python3-pymodbus)";
+  ROVCTL_REQUIRE_TOOL(test::have_pymodbus(), "/usr/bin/python3 has no usable pymodbus");
   const std::string dir = fs::temp_directory_path() / ("rovctl-run-" + std::to_string(getpid()));
   fs::remove_all(dir);
   fs::create_directories(dir);

@@ -2,6 +2,11 @@
 #include "app/config_loader.hpp"
 
 #include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <cstdio>
+#include <fstream>
+#include <string>
 
 #include "app/app_config.hpp"
 #include "app/errors.hpp"
@@ -64,6 +69,25 @@ TEST(ConfigLoader, WrongTypeAndRange) {
 
 TEST(ConfigLoader, SyntaxErrorNamesLine) {
   EXPECT_NE(error_of("calibration: c.yaml\nmarker: [\n").find("test.yaml:"), std::string::npos);
+}
+
+TEST(ConfigLoader, CrossFieldErrorsNameTheFile) {
+  // Each key is in range; together they are not (an empty search volume).
+  const std::string path =
+      ::testing::TempDir() + "rovctl_cross_field_" + std::to_string(::getpid()) + ".yaml";
+  {
+    std::ofstream f(path);
+    f << "calibration: c.yaml\nestimator:\n  search:\n    x_min_m: 0.5\n    x_max_m: 0.1\n";
+  }
+  try {
+    load_app_config(path);
+    ADD_FAILURE() << "an empty search volume was accepted";
+  } catch (const ConfigError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find(path), std::string::npos) << what;
+    EXPECT_NE(what.find("x"), std::string::npos) << what;
+  }
+  std::remove(path.c_str());
 }
 
 TEST(ConfigLoader, DocumentsEveryParameter) {
