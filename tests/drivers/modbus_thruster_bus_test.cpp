@@ -18,6 +18,8 @@
 #include <thread>
 #include <vector>
 
+#include "test_tools.hpp"
+
 extern char** environ;
 
 namespace rovctl::drivers {
@@ -28,11 +30,6 @@ namespace fs = std::filesystem;
 const char* kPython = "/usr/bin/python3";
 const std::string kController =
     std::string(ROVCTL_TEST_DATA_DIR) + "/../drivers/modbus_thruster_controller.py";
-
-bool have_pymodbus() {
-  return std::system("/usr/bin/python3 -c 'import pymodbus.server.async_io' >/dev/null 2>&1") == 0;
-}
-bool have_socat() { return std::system("command -v socat >/dev/null 2>&1") == 0; }
 
 pid_t spawn(const std::vector<std::string>& args) {
   std::vector<char*> argv;
@@ -75,7 +72,7 @@ hal::ThrusterCommand command_of(std::vector<double> f) {
 class ModbusBusTest : public ::testing::Test {
  protected:
   void SetUp() override {
-    if (!have_pymodbus()) GTEST_SKIP() << "/usr/bin/python3 has no pymodbus";
+    ROVCTL_REQUIRE_TOOL(test::have_pymodbus(), "/usr/bin/python3 has no usable pymodbus");
     char tmpl[] = "/tmp/rovctl_modbus_XXXXXX";
     ASSERT_NE(::mkdtemp(tmpl), nullptr);
     dir_ = tmpl;
@@ -104,7 +101,7 @@ class ModbusBusTest : public ::testing::Test {
   }
 
   void start_pty_pair() {
-    if (!have_socat()) GTEST_SKIP() << "socat is not installed";
+    ROVCTL_REQUIRE_TOOL(test::have_socat(), "socat is not installed");
     socat_ = spawn({"/usr/bin/socat", "pty,raw,echo=0,link=" + dir_ + "/rovctl",
                     "pty,raw,echo=0,link=" + dir_ + "/controller"});
     ASSERT_GT(socat_, 0);
@@ -212,17 +209,21 @@ TEST(ModbusPermille, Conversion) {
 
 TEST_F(ModbusBusTest, TcpCommandsHeartbeatAndTelemetry) {
   start_tcp_controller();
+  if (HasFatalFailure() || IsSkipped()) return;
   exercise_bus();
 }
 
 TEST_F(ModbusBusTest, RtuCommandsHeartbeatAndTelemetry) {
   start_pty_pair();
+  if (HasFatalFailure() || IsSkipped()) return;
   start_rtu_controller();
+  if (HasFatalFailure() || IsSkipped()) return;
   exercise_bus();
 }
 
 TEST_F(ModbusBusTest, TcpSilentSlaveFailsOpenNamingIt) {
   start_tcp_controller();
+  if (HasFatalFailure() || IsSkipped()) return;
   params_.slave_id = 9;  // the controller only answers unit 7
   params_.response_timeout_ms = 50;
   ModbusThrusterBus bus(params_, 8);
@@ -236,6 +237,7 @@ TEST_F(ModbusBusTest, TcpSilentSlaveFailsOpenNamingIt) {
 
 TEST_F(ModbusBusTest, TcpNobodyListening) {
   start_tcp_controller();
+  if (HasFatalFailure() || IsSkipped()) return;
   stop(server_);  // the port was free a moment ago; now nobody listens there
   ModbusThrusterBus bus(params_, 8);
   std::string error;
@@ -245,6 +247,7 @@ TEST_F(ModbusBusTest, TcpNobodyListening) {
 
 TEST_F(ModbusBusTest, RtuSilentLineFailsOpen) {
   start_pty_pair();  // nobody on the other end
+  if (HasFatalFailure() || IsSkipped()) return;
   params_.response_timeout_ms = 50;
   ModbusThrusterBus bus(params_, 8);
   std::string error;
@@ -266,6 +269,7 @@ TEST(ModbusBusOpen, MissingSerialPortIsNamed) {
 
 TEST_F(ModbusBusTest, ControllerLostDuringRunFaultsAfterNTicks) {
   start_tcp_controller();
+  if (HasFatalFailure() || IsSkipped()) return;
   params_.response_timeout_ms = 100;
   ModbusThrusterBus bus(params_, 8);
   std::string error;
@@ -285,6 +289,7 @@ TEST_F(ModbusBusTest, ControllerLostDuringRunFaultsAfterNTicks) {
 // The heartbeat contract: when rovctl stops ticking (it died), the controller stops.
 TEST_F(ModbusBusTest, StalledHeartbeatStopsTheController) {
   start_tcp_controller();
+  if (HasFatalFailure() || IsSkipped()) return;
   ModbusThrusterBus bus(params_, 8);
   std::string error;
   ASSERT_TRUE(bus.open(error)) << error;
