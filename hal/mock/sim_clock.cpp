@@ -25,6 +25,10 @@ std::chrono::nanoseconds SimClock::now() const {
 }
 
 void SimClock::sleep_until(std::chrono::nanoseconds deadline) {
+  // The world only integrates the commands of the last tick, which stand until the next one, so
+  // it can be stepped to the deadline before the sleep: in real time its compute then does not
+  // delay the wake-up (it would show as tick jitter the vehicle does not have).
+  world_.step_to(deadline);
   if (mode_ == Mode::realtime) {
     const std::chrono::nanoseconds wake = epoch_ + deadline;
     timespec ts{};
@@ -33,7 +37,6 @@ void SimClock::sleep_until(std::chrono::nanoseconds deadline) {
     while (clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &ts, nullptr) == EINTR) {
     }
   }
-  world_.step_to(deadline);
 }
 
 void SimClock::advance(std::chrono::nanoseconds dt) {

@@ -1,6 +1,6 @@
 // SimClock: the application's clock in simulation. Sleeping until a deadline steps the simulated
-// world to it — at once in virtual time, or after really sleeping until then in real time
-// (hardware in the loop), so the scheduler's code is the same as on the vehicle.
+// world to it — at once in virtual time, and in real time (hardware in the loop) also really
+// sleeping until then, so the scheduler's code is the same as on the vehicle.
 #pragma once
 
 #include <chrono>
@@ -20,8 +20,8 @@ class SimClock final : public Clock {
   SimClock(SimulatedWorld& world, Mode mode);
 
   std::chrono::nanoseconds now() const override;
-  // Virtual: the world jumps to `deadline`. Real time: clock_nanosleep(TIMER_ABSTIME) on
-  // CLOCK_MONOTONIC until then, then the world catches up to it.
+  // The world steps to `deadline`; in real time, clock_nanosleep(TIMER_ABSTIME) on
+  // CLOCK_MONOTONIC then waits for it, so the world's compute is not part of the wake-up.
   void sleep_until(std::chrono::nanoseconds deadline) override;
   // Simulated computing time (virtual mode): the world moves on by `dt` while the application
   // "works". In real time the work takes real time and this does nothing.

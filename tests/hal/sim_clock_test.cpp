@@ -1,4 +1,5 @@
-// The simulation clock moves the world: at once in virtual time, after a real sleep in real time.
+// The simulation clock moves the world: at once in virtual time; in real time it steps the world
+// to the deadline, then sleeps until the wall clock gets there.
 #include "hal/mock/sim_clock.hpp"
 
 #include <gtest/gtest.h>
@@ -23,7 +24,7 @@ TEST(SimClock, VirtualSleepStepsTheWorld) {
   EXPECT_EQ(clock.now(), milliseconds(507));
 }
 
-TEST(SimClock, RealtimeSleepWaitsThenSteps) {
+TEST(SimClock, RealtimeSleepStepsThenWaits) {
   SimulatedWorld world(SimParams{}, VehicleGeometry{}, DockingStation{});
   SimClock clock(world, SimClock::Mode::realtime);
   const auto start = clock.now();
