@@ -5,7 +5,7 @@
 #include <Eigen/Core>
 
 #include "control/control_params.hpp"
-#include "hal/sensors.hpp"
+#include "hal/interfaces/sensors.hpp"
 
 namespace rovctl::control {
 

@@ -6,8 +6,8 @@
 
 #include "control/control_params.hpp"
 #include "control/thruster_effectiveness.hpp"
-#include "hal/thruster_bus.hpp"
-#include "hal/thruster_layout.hpp"
+#include "hal/interfaces/thruster_bus.hpp"
+#include "hal/model/thruster_layout.hpp"
 
 namespace rovctl::control {
 

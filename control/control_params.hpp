@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "hal/parameters.hpp"
+#include "hal/primitives/parameters.hpp"
 
 namespace rovctl::control {
 

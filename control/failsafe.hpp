@@ -11,8 +11,8 @@
 #include "control/control_params.hpp"
 #include "control/mission.hpp"
 #include "control/thruster_effectiveness.hpp"
-#include "hal/stereo_camera.hpp"
-#include "hal/thruster_bus.hpp"
+#include "hal/interfaces/stereo_camera.hpp"
+#include "hal/interfaces/thruster_bus.hpp"
 
 namespace rovctl::control {
 

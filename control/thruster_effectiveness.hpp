@@ -9,8 +9,8 @@
 #include <cmath>
 #include <cstddef>
 
-#include "hal/thruster_bus.hpp"
-#include "hal/thruster_layout.hpp"
+#include "hal/interfaces/thruster_bus.hpp"
+#include "hal/model/thruster_layout.hpp"
 
 namespace rovctl::control {
 

@@ -4,8 +4,8 @@
 #include <memory>
 
 #include "drivers/camera_params.hpp"
-#include "hal/clock.hpp"
-#include "hal/stereo_camera.hpp"
+#include "hal/interfaces/clock.hpp"
+#include "hal/interfaces/stereo_camera.hpp"
 
 namespace rovctl::drivers {
 

@@ -4,7 +4,7 @@
 
 #include <string>
 
-#include "hal/parameters.hpp"
+#include "hal/primitives/parameters.hpp"
 
 namespace rovctl::drivers {
 

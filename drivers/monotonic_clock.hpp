@@ -2,7 +2,7 @@
 // so a late wake-up never shifts the following deadlines.
 #pragma once
 
-#include "hal/clock.hpp"
+#include "hal/interfaces/clock.hpp"
 
 namespace rovctl::drivers {
 

@@ -5,7 +5,7 @@
 #include <memory>
 
 #include "drivers/thruster_bus_params.hpp"
-#include "hal/thruster_bus.hpp"
+#include "hal/interfaces/thruster_bus.hpp"
 
 namespace rovctl::drivers {
 

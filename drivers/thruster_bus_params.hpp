@@ -5,7 +5,7 @@
 
 #include "drivers/modbus/modbus_params.hpp"
 #include "drivers/socketcan/dronecan_params.hpp"
-#include "hal/parameters.hpp"
+#include "hal/primitives/parameters.hpp"
 
 namespace rovctl::drivers {
 

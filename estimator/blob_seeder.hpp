@@ -8,8 +8,8 @@
 #include <opencv2/core/mat.hpp>
 #include <vector>
 
-#include "hal/marker_model.hpp"
-#include "hal/stereo_rig.hpp"
+#include "hal/model/marker_model.hpp"
+#include "hal/model/stereo_rig.hpp"
 
 namespace rovctl::estimator {
 

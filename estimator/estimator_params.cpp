@@ -75,8 +75,6 @@ void describe(hal::ParamVisitor& v, EstimatorParams& p) {
           "improved mode: seed genes from colour blobs triangulated in both images");
   v.param("refine_elite", p.refine_elite,
           "improved mode: least-squares refinement of the elite on the blobs' centroids");
-  v.param("motion_prediction", p.motion_prediction,
-          "improved mode: move the population by the camera motion since the last frame");
 }
 
 }  // namespace rovctl::estimator

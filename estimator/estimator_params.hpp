@@ -4,7 +4,7 @@
 
 #include <string>
 
-#include "hal/parameters.hpp"
+#include "hal/primitives/parameters.hpp"
 
 namespace rovctl::estimator {
 
@@ -45,9 +45,8 @@ struct EstimatorParams {
   double time_budget_ms = 15.0;
   double recognition_threshold = 0.6;
   // Improvements (used when mode is "improved").
-  bool blob_seeding = true;       // seed individuals from colour blobs triangulated in 3D
-  bool refine_elite = true;       // least-squares refinement of the elite on blob centroids
-  bool motion_prediction = true;  // move the population by the camera motion between frames
+  bool blob_seeding = true;  // seed individuals from colour blobs triangulated in 3D
+  bool refine_elite = true;  // least-squares refinement of the elite on blob centroids
 
   bool improved() const { return mode == "improved"; }
   // Cross-field checks the per-key ranges cannot express; throws std::invalid_argument.

@@ -6,7 +6,7 @@
 #include <opencv2/core/mat.hpp>
 #include <vector>
 
-#include "hal/marker_model.hpp"
+#include "hal/model/marker_model.hpp"
 
 namespace rovctl::estimator {
 

@@ -7,19 +7,6 @@
 #include <stdexcept>
 
 namespace rovctl::estimator {
-namespace {
-
-// Normalised image coordinates -> distorted pixel (CameraModel::project without the division).
-inline void distort(const hal::CameraModel& c, double x, double y, double& u, double& v) {
-  const double r2 = x * x + y * y;
-  const double radial = 1.0 + r2 * (c.k1 + r2 * (c.k2 + r2 * c.k3));
-  const double xd = x * radial + 2.0 * c.p1 * x * y + c.p2 * (r2 + 2.0 * x * x);
-  const double yd = y * radial + c.p1 * (r2 + 2.0 * y * y) + 2.0 * c.p2 * x * y;
-  u = c.fx_px * xd + c.cx_px;
-  v = c.fy_px * yd + c.cy_px;
-}
-
-}  // namespace
 
 MarkerFitness::MarkerFitness(const hal::StereoRig& rig, const hal::MarkerModel& marker,
                              const FitnessParams& params) {
@@ -69,9 +56,9 @@ double MarkerFitness::score_view(const View& view, const Eigen::Vector3d& c,
   const double x = c.x() / c.z(), y = c.y() / c.z();
   double u0, v0, ux, vx, uy, vy;
   constexpr double h = 1e-4;
-  distort(view.camera, x, y, u0, v0);
-  distort(view.camera, x + h, y, ux, vx);
-  distort(view.camera, x, y + h, uy, vy);
+  view.camera.distort(x, y, u0, v0);
+  view.camera.distort(x + h, y, ux, vx);
+  view.camera.distort(x, y + h, uy, vy);
   // Apparent radius on the normalised image plane: tan of the half-angle, stretched by 1/cos of
   // the angle off the optical axis.
   const double rn = r / std::sqrt(d2 - r * r) * std::sqrt(d2) / c.z();

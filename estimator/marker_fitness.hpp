@@ -8,8 +8,8 @@
 #include <vector>
 
 #include "estimator/estimator_params.hpp"
-#include "hal/marker_model.hpp"
-#include "hal/stereo_rig.hpp"
+#include "hal/model/marker_model.hpp"
+#include "hal/model/stereo_rig.hpp"
 
 namespace rovctl::estimator {
 

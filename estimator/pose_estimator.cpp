@@ -1,9 +1,8 @@
 // One estimator frame. The faithful mode is the paper's loop; the improved mode adds, each
-// switchable: motion prediction before, blob seeding during and elite refinement after evolution.
+// switchable: blob seeding during and elite refinement after evolution.
 #include "estimator/pose_estimator.hpp"
 
 #include <stdexcept>
-#include <string>
 
 namespace rovctl::estimator {
 namespace {
@@ -13,14 +12,13 @@ const EstimatorParams& validated(const EstimatorParams& p) {
   return p;
 }
 
-void check_image(const cv::Mat& image, const hal::CameraModel& camera, const char* which) {
-  if (image.type() != CV_8UC3 || image.cols != camera.width_px || image.rows != camera.height_px) {
-    throw std::invalid_argument(
-        std::string(which) + " image is " + std::to_string(image.cols) + "x" +
-        std::to_string(image.rows) + " (" + std::to_string(image.channels()) +
-        " channels) but the calibration says " + std::to_string(camera.width_px) + "x" +
-        std::to_string(camera.height_px) + " colour");
+// Null when the image is what the calibration says; else why not.
+const char* image_error(const cv::Mat& image, const hal::CameraModel& camera) {
+  if (image.type() != CV_8UC3) return "image is not 8-bit colour";
+  if (image.cols != camera.width_px || image.rows != camera.height_px) {
+    return "image size differs from the calibration";
   }
+  return nullptr;
 }
 
 }  // namespace
@@ -44,19 +42,32 @@ PoseEstimator::PoseEstimator(const hal::StereoRig& rig, const hal::MarkerModel& 
 
 void PoseEstimator::reset() { ga_.randomise(); }
 
-PoseEstimate PoseEstimator::update(const cv::Mat& left_bgr, const cv::Mat& right_bgr,
-                                   const Eigen::Isometry3d* T_clnow_clprev) {
-  using Clock = std::chrono::steady_clock;
-  const Clock::time_point start = Clock::now();
-  check_image(left_bgr, rig_.left, "left");
-  check_image(right_bgr, rig_.right, "right");
+PoseEstimate PoseEstimator::update(const cv::Mat& left_bgr, const cv::Mat& right_bgr) {
+  segment(left_bgr, right_bgr);
+  return estimate();
+}
+
+bool PoseEstimator::segment(const cv::Mat& left_bgr, const cv::Mat& right_bgr) {
+  frame_start_ = std::chrono::steady_clock::now();
+  input_error_ = image_error(left_bgr, rig_.left);
+  if (input_error_ == nullptr) input_error_ = image_error(right_bgr, rig_.right);
+  if (input_error_ != nullptr) return false;
   segmenter_.segment(left_bgr, labels_[0]);
   segmenter_.segment(right_bgr, labels_[1]);
+  return true;
+}
 
-  const bool improved = params_.improved();
-  if (improved && params_.motion_prediction && T_clnow_clprev != nullptr) {
-    ga_.transform(*T_clnow_clprev);
+PoseEstimate PoseEstimator::estimate() {
+  using Clock = std::chrono::steady_clock;
+  const Clock::time_point start = frame_start_;
+  if (input_error_ != nullptr) {
+    PoseEstimate none;
+    none.input_error = input_error_;
+    none.T_cl_marker = codec_.decode(ga_.best().gene);
+    none.compute_time = Clock::now() - start;
+    return none;
   }
+  const bool improved = params_.improved();
   ga_.evaluate_all();
 
   const bool use_blobs = improved && (params_.blob_seeding || params_.refine_elite);

@@ -1,6 +1,6 @@
 // Per-frame orchestration of the estimator: segment both images, evolve the RM-GA population
 // carried over from the last frame within the frame budget, and (improved mode) seed it from
-// colour blobs, refine the elite and predict it forward with the camera's motion.
+// colour blobs and refine the elite.
 #pragma once
 
 #include <Eigen/Geometry>
@@ -15,13 +15,16 @@
 #include "estimator/marker_fitness.hpp"
 #include "estimator/pose_refiner.hpp"
 #include "estimator/rmga.hpp"
-#include "hal/marker_model.hpp"
-#include "hal/stereo_rig.hpp"
+#include "hal/model/marker_model.hpp"
+#include "hal/model/stereo_rig.hpp"
 
 namespace rovctl::estimator {
 
 struct PoseEstimate {
   bool recognised = false;  // fitness >= recognition threshold (paper: 0.6)
+  // Null, or why there is no estimate this frame (a static string: e.g. an image whose size
+  // disagrees with the calibration). Never thrown: the estimator runs inside the tick.
+  const char* input_error = nullptr;
   Eigen::Isometry3d T_cl_marker = Eigen::Isometry3d::Identity();
   double fitness = 0.0;  // best individual's fitness in [0, 1]
   int generations = 0;   // generations run this frame
@@ -36,12 +39,14 @@ class PoseEstimator {
   PoseEstimator(const PoseEstimator&) = delete;
   PoseEstimator& operator=(const PoseEstimator&) = delete;
 
-  // One frame: segment both images, evolve the carried-over population within the frame budget.
-  // Allocates nothing after construction. Optional T_clnow_clprev (camera motion since the last
-  // frame, e.g. from the vehicle's odometry) predicts the population forward when the mode uses
-  // prediction. Throws std::invalid_argument if an image's size or type disagrees with the rig.
-  PoseEstimate update(const cv::Mat& left_bgr, const cv::Mat& right_bgr,
-                      const Eigen::Isometry3d* T_clnow_clprev = nullptr);
+  // One frame: segment() then estimate(). Allocates nothing after construction.
+  PoseEstimate update(const cv::Mat& left_bgr, const cv::Mat& right_bgr);
+  // The two stages of a frame, timed apart by the tick. segment() labels both images; false
+  // (and the next estimate() says why) when an image's size or type disagrees with the rig.
+  bool segment(const cv::Mat& left_bgr, const cv::Mat& right_bgr);
+  // Evolves the carried-over population on the last segmented pair within the frame budget,
+  // which counts from the start of segment().
+  PoseEstimate estimate();
   void reset();  // fresh random population (marker lost / new search)
 
   const EstimatorParams& params() const { return params_; }
@@ -61,6 +66,8 @@ class PoseEstimator {
   PoseRefiner refiner_;
   cv::Mat labels_[2];
   long extra_evaluations_ = 0;
+  std::chrono::steady_clock::time_point frame_start_{};
+  const char* input_error_ = nullptr;
 };
 
 }  // namespace rovctl::estimator

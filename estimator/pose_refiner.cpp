@@ -6,7 +6,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "hal/sphere_rim.hpp"
+#include "hal/model/sphere_rim.hpp"
 
 namespace rovctl::estimator {
 

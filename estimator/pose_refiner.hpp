@@ -6,8 +6,8 @@
 #include <Eigen/Geometry>
 
 #include "estimator/blob_seeder.hpp"
-#include "hal/marker_model.hpp"
-#include "hal/stereo_rig.hpp"
+#include "hal/model/marker_model.hpp"
+#include "hal/model/stereo_rig.hpp"
 
 namespace rovctl::estimator {
 

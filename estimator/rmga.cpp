@@ -80,10 +80,4 @@ void Rmga::insert(const Gene& gene, double fitness) {
   sort();
 }
 
-void Rmga::transform(const Eigen::Isometry3d& T_clnow_clprev) {
-  for (Individual& ind : population_) {
-    codec_.encode(T_clnow_clprev * codec_.decode(ind.gene), ind.gene);
-  }
-}
-
 }  // namespace rovctl::estimator

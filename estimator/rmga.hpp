@@ -35,8 +35,6 @@ class Rmga {
   void generation();
   // Replaces the worst gene (used to seed; the population stays sorted).
   void insert(const Gene& gene, double fitness);
-  // Moves every gene by a rigid motion of the camera: T_cl_marker <- T_clnow_clprev * T_cl_marker.
-  void transform(const Eigen::Isometry3d& T_clnow_clprev);
 
   const Individual& best() const { return population_.front(); }
   const std::vector<Individual>& population() const { return population_; }

@@ -4,7 +4,7 @@
 
 #include <string>
 
-#include "hal/stereo_rig.hpp"
+#include "hal/model/stereo_rig.hpp"
 
 namespace rovctl::estimator {
 

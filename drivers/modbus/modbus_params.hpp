@@ -3,7 +3,7 @@
 
 #include <string>
 
-#include "hal/parameters.hpp"
+#include "hal/primitives/parameters.hpp"
 
 namespace rovctl::drivers {
 

@@ -8,7 +8,7 @@
 #include <string>
 
 #include "drivers/modbus/modbus_params.hpp"
-#include "hal/thruster_bus.hpp"
+#include "hal/interfaces/thruster_bus.hpp"
 
 struct _modbus;  // libmodbus context (modbus_t), kept out of this header
 

@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "hal/stereo_camera.hpp"
+#include "hal/interfaces/stereo_camera.hpp"
 
 namespace rovctl::drivers {
 

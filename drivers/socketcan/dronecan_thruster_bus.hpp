@@ -12,7 +12,7 @@
 #include "drivers/socketcan/can_socket.hpp"
 #include "drivers/socketcan/dronecan_codec.hpp"
 #include "drivers/socketcan/dronecan_params.hpp"
-#include "hal/thruster_bus.hpp"
+#include "hal/interfaces/thruster_bus.hpp"
 
 namespace rovctl::drivers {
 

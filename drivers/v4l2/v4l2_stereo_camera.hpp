@@ -9,8 +9,8 @@
 #include "drivers/v4l2/frame_pairing.hpp"
 #include "drivers/v4l2/reopen_backoff.hpp"
 #include "drivers/v4l2/v4l2_device.hpp"
-#include "hal/clock.hpp"
-#include "hal/stereo_camera.hpp"
+#include "hal/interfaces/clock.hpp"
+#include "hal/interfaces/stereo_camera.hpp"
 
 namespace rovctl::drivers {
 

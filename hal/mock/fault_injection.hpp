@@ -4,7 +4,7 @@
 
 #include <chrono>
 
-#include "hal/parameters.hpp"
+#include "hal/primitives/parameters.hpp"
 
 namespace rovctl::hal::mock {
 

@@ -5,10 +5,10 @@
 #include <cstdint>
 #include <random>
 
+#include "hal/interfaces/sensors.hpp"
 #include "hal/mock/fault_injection.hpp"
 #include "hal/mock/sim_params.hpp"
 #include "hal/mock/simulated_world.hpp"
-#include "hal/sensors.hpp"
 
 namespace rovctl::hal::mock {
 

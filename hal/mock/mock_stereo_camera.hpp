@@ -7,13 +7,13 @@
 #include <random>
 #include <string>
 
-#include "hal/marker_model.hpp"
+#include "hal/interfaces/stereo_camera.hpp"
 #include "hal/mock/fault_injection.hpp"
 #include "hal/mock/scene_renderer.hpp"
 #include "hal/mock/sim_params.hpp"
 #include "hal/mock/simulated_world.hpp"
-#include "hal/stereo_camera.hpp"
-#include "hal/stereo_rig.hpp"
+#include "hal/model/marker_model.hpp"
+#include "hal/model/stereo_rig.hpp"
 
 namespace rovctl::hal::mock {
 

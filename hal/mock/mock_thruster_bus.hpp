@@ -6,9 +6,9 @@
 #include <cstdint>
 #include <string>
 
+#include "hal/interfaces/thruster_bus.hpp"
 #include "hal/mock/fault_injection.hpp"
 #include "hal/mock/simulated_world.hpp"
-#include "hal/thruster_bus.hpp"
 
 namespace rovctl::hal::mock {
 

@@ -8,7 +8,7 @@
 #include <opencv2/core.hpp>
 #include <stdexcept>
 
-#include "hal/sphere_rim.hpp"
+#include "hal/model/sphere_rim.hpp"
 
 namespace rovctl::hal::mock {
 namespace {

@@ -7,10 +7,10 @@
 #include <opencv2/core/mat.hpp>
 #include <vector>
 
-#include "hal/camera_model.hpp"
-#include "hal/marker_model.hpp"
-#include "hal/parameters.hpp"
-#include "hal/stereo_rig.hpp"
+#include "hal/model/camera_model.hpp"
+#include "hal/model/marker_model.hpp"
+#include "hal/model/stereo_rig.hpp"
+#include "hal/primitives/parameters.hpp"
 
 namespace rovctl::hal::mock {
 

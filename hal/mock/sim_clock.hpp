@@ -6,7 +6,7 @@
 #include <chrono>
 #include <ctime>
 
-#include "hal/clock.hpp"
+#include "hal/interfaces/clock.hpp"
 #include "hal/mock/simulated_world.hpp"
 
 namespace rovctl::hal::mock {

@@ -11,7 +11,7 @@
 #include "hal/mock/thruster_model.hpp"
 #include "hal/mock/vehicle_dynamics.hpp"
 #include "hal/mock/water_current.hpp"
-#include "hal/parameters.hpp"
+#include "hal/primitives/parameters.hpp"
 
 namespace rovctl::hal::mock {
 

@@ -3,8 +3,6 @@
 // tests and hardware-in-the-loop runs build it the same way.
 #pragma once
 
-#include "hal/docking_station.hpp"
-#include "hal/marker_model.hpp"
 #include "hal/mock/mock_sensors.hpp"
 #include "hal/mock/mock_stereo_camera.hpp"
 #include "hal/mock/mock_thruster_bus.hpp"
@@ -12,8 +10,10 @@
 #include "hal/mock/sim_params.hpp"
 #include "hal/mock/simulated_world.hpp"
 #include "hal/mock/trial_generator.hpp"
-#include "hal/stereo_rig.hpp"
-#include "hal/vehicle_geometry.hpp"
+#include "hal/model/docking_station.hpp"
+#include "hal/model/marker_model.hpp"
+#include "hal/model/stereo_rig.hpp"
+#include "hal/model/vehicle_geometry.hpp"
 
 namespace rovctl::hal::mock {
 

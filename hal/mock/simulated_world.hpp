@@ -9,13 +9,13 @@
 #include <cstdint>
 #include <vector>
 
-#include "hal/docking_station.hpp"
+#include "hal/interfaces/thruster_bus.hpp"
 #include "hal/mock/sim_params.hpp"
 #include "hal/mock/thruster_model.hpp"
 #include "hal/mock/vehicle_dynamics.hpp"
 #include "hal/mock/water_current.hpp"
-#include "hal/thruster_bus.hpp"
-#include "hal/vehicle_geometry.hpp"
+#include "hal/model/docking_station.hpp"
+#include "hal/model/vehicle_geometry.hpp"
 
 namespace rovctl::hal::mock {
 

@@ -6,9 +6,9 @@
 #include <array>
 #include <cstddef>
 
-#include "hal/parameters.hpp"
-#include "hal/thruster_bus.hpp"
-#include "hal/thruster_layout.hpp"
+#include "hal/interfaces/thruster_bus.hpp"
+#include "hal/model/thruster_layout.hpp"
+#include "hal/primitives/parameters.hpp"
 
 namespace rovctl::hal::mock {
 

@@ -6,11 +6,11 @@
 #include <Eigen/Geometry>
 #include <cstdint>
 
-#include "hal/marker_model.hpp"
 #include "hal/mock/sim_params.hpp"
 #include "hal/mock/vehicle_dynamics.hpp"
-#include "hal/stereo_rig.hpp"
-#include "hal/vehicle_geometry.hpp"
+#include "hal/model/marker_model.hpp"
+#include "hal/model/stereo_rig.hpp"
+#include "hal/model/vehicle_geometry.hpp"
 
 namespace rovctl::hal::mock {
 

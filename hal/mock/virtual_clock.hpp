@@ -4,7 +4,7 @@
 
 #include <atomic>
 
-#include "hal/clock.hpp"
+#include "hal/interfaces/clock.hpp"
 
 namespace rovctl::hal::mock {
 

@@ -7,7 +7,7 @@
 #include <cstdint>
 #include <random>
 
-#include "hal/parameters.hpp"
+#include "hal/primitives/parameters.hpp"
 
 namespace rovctl::hal::mock {
 

@@ -3,12 +3,12 @@
 
 #include <random>
 
-#include "app/app_config.hpp"
+#include "app/runtime/app_config.hpp"
 #include "estimator/hue_segmenter.hpp"
 #include "estimator/pose_estimator.hpp"
 #include "estimator/stereo_calibration.hpp"
 #include "hal/mock/scene_renderer.hpp"
-#include "hal/pose.hpp"
+#include "hal/model/pose.hpp"
 
 namespace {
 

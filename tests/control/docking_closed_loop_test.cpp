@@ -12,10 +12,10 @@
 #include "control/control_allocation_pseudo_inverse.hpp"
 #include "control/mission.hpp"
 #include "control/pd_visual_servo.hpp"
-#include "hal/docking_station.hpp"
 #include "hal/mock/thruster_model.hpp"
 #include "hal/mock/vehicle_dynamics.hpp"
-#include "hal/vehicle_geometry.hpp"
+#include "hal/model/docking_station.hpp"
+#include "hal/model/vehicle_geometry.hpp"
 
 namespace rovctl::control {
 namespace {

@@ -7,8 +7,8 @@
 #include <string>
 #include <vector>
 
-#include "hal/docking_station.hpp"
-#include "hal/vehicle_geometry.hpp"
+#include "hal/model/docking_station.hpp"
+#include "hal/model/vehicle_geometry.hpp"
 
 namespace rovctl::control {
 namespace {

@@ -8,8 +8,8 @@
 #include <limits>
 #include <random>
 
-#include "hal/docking_station.hpp"
-#include "hal/vehicle_geometry.hpp"
+#include "hal/model/docking_station.hpp"
+#include "hal/model/vehicle_geometry.hpp"
 
 namespace rovctl::control {
 namespace {

@@ -10,8 +10,8 @@
 #include "control/failsafe.hpp"
 #include "control/mission.hpp"
 #include "control/pd_visual_servo.hpp"
-#include "hal/docking_station.hpp"
-#include "hal/vehicle_geometry.hpp"
+#include "hal/model/docking_station.hpp"
+#include "hal/model/vehicle_geometry.hpp"
 
 #if defined(__SANITIZE_ADDRESS__)
 #define ROVCTL_NO_MALLOC_HOOKS 1

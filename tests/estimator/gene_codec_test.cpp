@@ -3,7 +3,7 @@
 
 #include <gtest/gtest.h>
 
-#include "hal/pose.hpp"
+#include "hal/model/pose.hpp"
 
 namespace rovctl::estimator {
 namespace {

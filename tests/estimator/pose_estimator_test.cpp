@@ -3,6 +3,8 @@
 
 #include <gtest/gtest.h>
 
+#include <string>
+
 #include "test_scene.hpp"
 
 namespace rovctl::estimator {
@@ -50,36 +52,22 @@ TEST(PoseEstimator, FaithfulModeClimbsAndIsReproducible) {
   EXPECT_GT(last, first);
 }
 
-TEST(PoseEstimator, MotionPredictionKeepsTrackAcrossAStep) {
-  TestScene scene;
-  const Eigen::Isometry3d before = hal::make_pose({0.05, 0.0, 0.6}, Eigen::Quaterniond::Identity());
-  scene.render(before);
-  PoseEstimator predicted(scene.rig, scene.marker, EstimatorParams{}, 2);
-  PoseEstimator unpredicted(scene.rig, scene.marker, EstimatorParams{}, 2);
-  predicted.update(scene.left_bgr, scene.right_bgr);
-  unpredicted.update(scene.left_bgr, scene.right_bgr);
-  // The camera moves 60 mm toward the marker, and the right view goes blank so the blobs cannot
-  // re-seed: only the carried-over population, moved or not, can keep track.
-  const Eigen::Isometry3d T_now_prev =
-      hal::make_pose({0.0, 0.0, -0.06}, Eigen::Quaterniond::Identity());
-  const Eigen::Isometry3d after = T_now_prev * before;
-  scene.render(after);
-  cv::Mat blank_right;
-  scene.right.render(hal::make_pose({0, 0, -1}, Eigen::Quaterniond::Identity()), 1, blank_right);
-  const PoseEstimate with = predicted.update(scene.left_bgr, blank_right, &T_now_prev);
-  const PoseEstimate without = unpredicted.update(scene.left_bgr, blank_right);
-  // One view leaves depth loose, so "near" is a few radii here; without prediction the elite
-  // stays where the marker was.
-  EXPECT_LT(translation_error_mm(with.T_cl_marker, after), 25.0);
-  EXPECT_GT(translation_error_mm(without.T_cl_marker, after),
-            2.0 * translation_error_mm(with.T_cl_marker, after));
-}
-
-TEST(PoseEstimator, WrongImageSizeThrows) {
+// The estimator runs inside the tick: a wrong image is reported in the estimate, never thrown.
+TEST(PoseEstimator, WrongImageSizeIsReportedNotThrown) {
   TestScene scene;
   PoseEstimator est(scene.rig, scene.marker, EstimatorParams{}, 1);
   cv::Mat small(240, 320, CV_8UC3, cv::Scalar(0, 0, 0));
-  EXPECT_THROW(est.update(small, small), std::invalid_argument);
+  EXPECT_FALSE(est.segment(small, small));
+  PoseEstimate e;
+  EXPECT_NO_THROW(e = est.estimate());
+  EXPECT_FALSE(e.recognised);
+  ASSERT_NE(e.input_error, nullptr);
+  EXPECT_NE(std::string(e.input_error).find("size"), std::string::npos);
+  cv::Mat grey(scene.rig.left.height_px, scene.rig.left.width_px, CV_8UC1, cv::Scalar(0));
+  EXPECT_FALSE(est.update(grey, grey).input_error == nullptr);
+  // A good pair afterwards is estimated as usual.
+  scene.render(hal::make_pose({0.0, 0.0, 0.5}, Eigen::Quaterniond::Identity()));
+  EXPECT_EQ(est.update(scene.left_bgr, scene.right_bgr).input_error, nullptr);
 }
 
 TEST(PoseEstimator, InconsistentParamsThrow) {

@@ -7,9 +7,9 @@
 #include <string>
 
 #include "estimator/stereo_calibration.hpp"
-#include "hal/marker_model.hpp"
 #include "hal/mock/scene_renderer.hpp"
-#include "hal/pose.hpp"
+#include "hal/model/marker_model.hpp"
+#include "hal/model/pose.hpp"
 
 namespace rovctl::estimator::testing {
 

@@ -1,0 +1,96 @@
+// `rovctl run`: the vehicle. Opens the configured backends (exit 2 naming the device if one is
+// missing), arms, runs the 33 ms loop until SIGINT/SIGTERM or the mission ends, and always leaves
+// the thrusters neutral and disarmed.
+#include <atomic>
+#include <chrono>
+#include <csignal>
+#include <iostream>
+
+#include "app/cli/cli_args.hpp"
+#include "app/cli/commands.hpp"
+#include "app/runtime/app_config.hpp"
+#include "app/runtime/errors.hpp"
+#include "app/runtime/systemd_notify.hpp"
+#include "app/runtime/vehicle.hpp"
+
+namespace rovctl::app {
+namespace {
+
+std::atomic<Vehicle*> g_vehicle{nullptr};
+
+extern "C" void on_stop_signal(int) {
+  if (Vehicle* v = g_vehicle.load()) v->request_stop();
+}
+
+// SIGINT and SIGTERM ask the vehicle to stop for as long as this lives.
+class StopSignal {
+ public:
+  explicit StopSignal(Vehicle& vehicle) {
+    g_vehicle = &vehicle;
+    std::signal(SIGINT, on_stop_signal);
+    std::signal(SIGTERM, on_stop_signal);
+  }
+  ~StopSignal() {
+    std::signal(SIGINT, SIG_DFL);
+    std::signal(SIGTERM, SIG_DFL);
+    g_vehicle = nullptr;
+  }
+  StopSignal(const StopSignal&) = delete;
+  StopSignal& operator=(const StopSignal&) = delete;
+};
+
+}  // namespace
+
+int command_run(const Words& words) {
+  const CliArgs args =
+      CliArgs::parse("run", words, {"--config", "--max-ticks", "--telemetry"}, {"--quiet"});
+  if (!args.has("--config")) throw UsageError("rovctl run: --config FILE is required");
+  const AppConfig config = load_app_config(args.get("--config"));
+  const hal::StereoRig rig = load_rig(config);
+  const auto max_ticks = static_cast<std::uint64_t>(args.get_int("--max-ticks", 0, 0, 1L << 40));
+  const bool quiet = args.has("--quiet");
+
+  VehicleOptions options;
+  options.telemetry_csv = args.get("--telemetry", "rovctl-telemetry.csv");
+  Vehicle vehicle(config, rig, make_vehicle_backends(config, rig), options);
+  std::string error;
+  if (!vehicle.open(error)) throw ConfigError(error);
+  const std::string devices =
+      vehicle.backends().camera->name() + ", " + vehicle.backends().bus->name();
+
+  if (config.control.attitude.enabled && !config.control.servo.six_dof &&
+      vehicle.backends().sensors == nullptr) {
+    std::cerr << "rovctl run: warning: control.attitude.enabled, but these backends give no "
+                 "attitude: roll and pitch are only damped by vision\n";
+  }
+
+  // The vehicle's destructor leaves the thrusters neutral and disarmed on every way out of this
+  // scope, an exception included; the signal handler only asks the loop to stop.
+  const RealtimeSetupResult& rt = vehicle.enter_realtime();
+  for (const auto& w : rt.warnings) std::cerr << "rovctl run: warning: " << w << "\n";
+  for (const auto& a : rt.applied) {
+    if (!quiet) std::cerr << "rovctl run: " << a << "\n";
+  }
+  StopSignal stop(vehicle);
+  if (!vehicle.arm(error)) {
+    std::cerr << "rovctl run: " << error << "\n";
+    return kExitRuntimeFailure;
+  }
+  SystemdNotifier notifier;
+  notifier.ready();
+  if (!quiet) std::cerr << "rovctl run: armed; " << devices << "\n";
+  int code = kExitOk;
+  vehicle.run(max_ticks == 0 ? CyclicScheduler::kNoTickLimit : max_ticks,
+              [&](const TickInfo& info) { notifier.feed_watchdog(info.wakeup); });
+  notifier.stopping();
+  if (vehicle.loop().failsafe().tripped()) code = kExitRuntimeFailure;
+  if (!quiet) std::cerr << vehicle.scheduler().report();
+  vehicle.make_safe();
+  if (!quiet) {
+    std::cerr << "rovctl run: stopped after " << vehicle.loop().ticks() << " ticks, mission "
+              << control::to_string(vehicle.loop().mission().state()) << "\n";
+  }
+  return code;
+}
+
+}  // namespace rovctl::app

@@ -1,0 +1,119 @@
+// `rovctl study`: the paper's GA-parameter study on this machine (Fig. 8, Table 1, Fig. 9,
+// Table 2) for the faithful and the improved estimator, with progress on stderr.
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <thread>
+
+#include "app/cli/cli_args.hpp"
+#include "app/cli/commands.hpp"
+#include "app/runtime/app_config.hpp"
+#include "app/runtime/errors.hpp"
+#include "app/runtime/vehicle_backends.hpp"
+#include "app/tools/study.hpp"
+#include "app/tools/study_report.hpp"
+
+namespace rovctl::app {
+namespace {
+
+constexpr const char* kUsage =
+    "usage: rovctl study [--config FILE] [--quick] [--seeds N] [--out DIR] [--limit-s S] [--json]";
+
+// One updating line on a terminal; elsewhere (a log, CI) a line per phase and every 10 %.
+class ProgressPrinter {
+ public:
+  ProgressPrinter(std::ostream& err, bool terminal) : err_(err), terminal_(terminal) {}
+  ~ProgressPrinter() { finish(); }
+
+  void operator()(const std::string& phase, long done, long total) {
+    const auto now = std::chrono::steady_clock::now();
+    const double elapsed = std::chrono::duration<double>(now - start_).count();
+    const int percent = total > 0 ? static_cast<int>(100 * done / total) : 100;
+    char line[256];
+    std::snprintf(line, sizeof line, "study: %s %ld/%ld (%d %%), %.0f s elapsed", phase.c_str(),
+                  done, total, percent, elapsed);
+    if (terminal_) {
+      if (now - last_ < std::chrono::milliseconds(150) && done < total && phase == phase_) return;
+      last_ = now;
+      const std::string text = line;
+      err_ << "\r" << text << std::string(width_ > text.size() ? width_ - text.size() : 0, ' ')
+           << std::flush;
+      width_ = text.size();
+      dirty_ = true;
+    } else if (phase != phase_ || percent / 10 > decile_) {
+      decile_ = percent / 10;
+      err_ << line << "\n" << std::flush;
+    }
+    if (phase != phase_) {
+      phase_ = phase;
+      decile_ = percent / 10;
+    }
+  }
+
+  void finish() {
+    if (terminal_ && dirty_) err_ << "\n" << std::flush;
+    dirty_ = false;
+  }
+
+ private:
+  std::ostream& err_;
+  bool terminal_;
+  std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
+  std::chrono::steady_clock::time_point last_{};
+  std::string phase_;
+  int decile_ = -1;
+  std::size_t width_ = 0;
+  bool dirty_ = false;
+};
+
+}  // namespace
+
+int run_study_command(const std::vector<std::string>& words, std::ostream& out, std::ostream& err) {
+  const CliArgs args = CliArgs::parse("study", words, {"--config", "--seeds", "--out", "--limit-s"},
+                                      {"--quick", "--json"});
+  const bool quick = args.has("--quick");
+  const std::string config_path =
+      args.has("--config") ? args.get("--config") : default_config_path();
+  const AppConfig config = load_app_config(config_path);
+  const hal::StereoRig rig = load_rig(config);
+
+  StudySettings settings = quick ? StudySettings::quick_subset(rig) : StudySettings::full(rig);
+  settings.seeds = static_cast<int>(args.get_int("--seeds", settings.seeds, 1, 10000));
+  settings.time_limit_s =
+      args.get_double("--limit-s", settings.time_limit_s, settings.frame_period_s, 600.0);
+  settings.threads = static_cast<int>(
+      std::clamp(std::thread::hardware_concurrency(), 1u, 2u));  // the project's two cores
+  const std::string out_dir = args.get("--out", "study-out");
+  if (out_dir.empty())
+    throw UsageError("rovctl study: --out needs a directory (" + std::string(kUsage) + ")");
+  std::error_code ec;
+  std::filesystem::create_directories(out_dir, ec);
+  if (ec || !std::filesystem::is_directory(out_dir)) {
+    throw std::runtime_error(out_dir + ": cannot create the output directory" +
+                             (ec ? " (" + ec.message() + ")" : std::string()));
+  }
+
+  std::string command_line = "rovctl study";
+  for (const std::string& w : words) command_line += " " + w;
+
+  ProgressPrinter printer(err, &err == &std::cerr && ::isatty(STDERR_FILENO) == 1);
+  const StudyResult result = run_study(
+      rig, config.marker, config.estimator, config.sim.camera.render, settings,
+      [&printer](const std::string& phase, long done, long total) { printer(phase, done, total); });
+  printer.finish();
+  const StudyFiles files = write_study_outputs(out_dir, result, command_line);
+  if (args.has("--json")) {
+    out << study_json(result, files) << "\n";
+  } else {
+    out << study_text(result, files);
+  }
+  return kExitOk;
+}
+
+int command_study(const Words& words) { return run_study_command(words, std::cout, std::cerr); }
+
+}  // namespace rovctl::app

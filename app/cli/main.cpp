@@ -1,0 +1,69 @@
+// rovctl entry point: dispatches sub-commands and maps errors to the exit codes (0 ok, 1 run-time
+// failure, 2 usage/config).
+#include <cstring>
+#include <exception>
+#include <iostream>
+#include <string>
+
+#include "app/cli/commands.hpp"
+#include "app/runtime/errors.hpp"
+
+namespace {
+
+constexpr const char* kUsage = R"(usage: rovctl <command> [options]
+
+commands:
+  sim        [--config FILE] [--trials N] [--seed S] [--realtime] [--json] [--out DIR]
+             closed-loop docking on the mock HAL
+  estimate   --config FILE --left L.png --right R.png [--frames N] [--seed S] [--json]
+             marker pose in the left camera frame from one stereo pair
+  bench      [--config FILE] [--json]     estimator throughput and convergence
+  study      [--config FILE] [--quick] [--seeds N] [--out DIR] [--json]
+             the paper's GA-parameter study on this machine
+  run        --config FILE                the vehicle, with the backends the config names
+  check      --config FILE                pre-flight checks
+  thrusters  --config FILE --test [--yes] motor test, one thruster at a time
+  record     --config FILE --out DIR [--frames N]  save timestamped stereo pairs
+  params     [--config FILE]              every config parameter: unit, range, default, meaning
+
+exit codes: 0 success, 1 runtime failure, 2 usage or config error
+)";
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  using namespace rovctl::app;
+  if (argc < 2 || std::strcmp(argv[1], "help") == 0 || std::strcmp(argv[1], "--help") == 0 ||
+      std::strcmp(argv[1], "-h") == 0) {
+    std::cout << kUsage;
+    return argc < 2 ? kExitUsage : kExitOk;
+  }
+  if (std::strcmp(argv[1], "--version") == 0) {
+    std::cout << "rovctl " << ROVCTL_VERSION << "\n";
+    return kExitOk;
+  }
+  const std::string command = argv[1];
+  const Words words(argv + 2, argv + argc);
+  try {
+    if (command == "estimate") return command_estimate(words);
+    if (command == "bench") return command_bench(words);
+    if (command == "sim") return command_sim(words);
+    if (command == "run") return command_run(words);
+    if (command == "check") return command_check(words);
+    if (command == "thrusters") return command_thrusters(words);
+    if (command == "record") return command_record(words);
+    if (command == "study") return command_study(words);
+    if (command == "params") return command_params(words);
+    std::cerr << "rovctl: unknown command '" << command << "'\n" << kUsage;
+    return kExitUsage;
+  } catch (const UsageError& e) {
+    std::cerr << e.what() << "\n";
+    return kExitUsage;
+  } catch (const ConfigError& e) {
+    std::cerr << "rovctl " << command << ": " << e.what() << "\n";
+    return kExitUsage;
+  } catch (const std::exception& e) {
+    std::cerr << "rovctl " << command << ": error: " << e.what() << "\n";
+    return kExitRuntimeFailure;
+  }
+}

@@ -1,0 +1,143 @@
+// The vehicle root's wiring and its guarantees: start-up order, the helper threads, and the safe
+// state on every way out of run() and of the object itself.
+#include "app/runtime/vehicle.hpp"
+
+#include <algorithm>
+#include <iostream>
+
+#include "app/runtime/errors.hpp"
+#include "app/runtime/realtime_setup.hpp"
+
+namespace rovctl::app {
+namespace {
+
+constexpr std::chrono::milliseconds kLoggerPeriod{50};
+
+std::chrono::microseconds us(double ms) {
+  return std::chrono::microseconds(static_cast<std::int64_t>(ms * 1000.0));
+}
+
+}  // namespace
+
+Vehicle::Vehicle(const AppConfig& config, const hal::StereoRig& rig, VehicleBackends backends,
+                 VehicleOptions options)
+    : config_(config),
+      options_(std::move(options)),
+      backends_(std::move(backends)),
+      scheduler_(std::make_unique<CyclicScheduler>(*backends_.clock, config.scheduler)),
+      ring_(std::max(static_cast<std::size_t>(config.telemetry.ring_capacity),
+                     options_.min_ring_capacity)) {
+  const bool telemetry_on = config.telemetry.enabled || !options_.helper_threads;
+  loop_ = std::make_unique<VehicleLoop>(config, rig, *backends_.camera, *backends_.bus,
+                                        backends_.sensors, *scheduler_,
+                                        telemetry_on ? &ring_ : nullptr, options_.seed);
+}
+
+Vehicle::~Vehicle() {
+  make_safe();
+  stop_helpers();
+  if (opened_) {
+    try {
+      backends_.bus->close();
+      backends_.camera->close();
+    } catch (...) {
+      // A destructor must not throw; the bus's own close already commanded neutral.
+    }
+  }
+}
+
+bool Vehicle::open(std::string& error) {
+  if (!backends_.camera->open(error)) return false;
+  if (!backends_.bus->open(error)) {
+    backends_.camera->close();
+    return false;
+  }
+  opened_ = true;
+  return true;
+}
+
+bool Vehicle::arm(std::string& error) {
+  start_helpers();
+  return loop_->arm(error);
+}
+
+const SchedulerStats& Vehicle::run(std::uint64_t max_ticks,
+                                   const std::function<void(const TickInfo&)>& after_tick) {
+  try {
+    return scheduler_->run(
+        [&](const TickInfo& info) {
+          const bool more = loop_->tick(info);
+          if (after_tick) after_tick(info);
+          return more;
+        },
+        max_ticks);
+  } catch (...) {
+    make_safe();
+    throw;
+  }
+}
+
+const RealtimeSetupResult& Vehicle::enter_realtime() {
+  realtime_ = apply_realtime_setup(config_.scheduler.realtime);
+  return realtime_;
+}
+
+void Vehicle::make_safe() noexcept {
+  try {
+    loop_->disarm();
+  } catch (...) {
+    // The loop could not reach the bus: its close() (destructor) sends neutral again.
+  }
+}
+
+void Vehicle::start_helpers() {
+  if (!options_.helper_threads || logging_.load()) return;
+  if (config_.telemetry.enabled) {
+    writer_ = std::make_unique<TelemetryWriter>(
+        ring_, options_.telemetry_csv,
+        std::chrono::milliseconds(static_cast<int>(config_.telemetry.drain_period_ms)));
+    writer_->start();
+  }
+  logging_ = true;
+  logger_ = std::thread([this]() {
+    make_thread_non_realtime();
+    LoopEvent e;
+    while (logging_.load()) {
+      while (loop_->pop_event(e)) std::cerr << options_.log_prefix << format_event(e) << "\n";
+      std::this_thread::sleep_for(kLoggerPeriod);
+    }
+    while (loop_->pop_event(e)) std::cerr << options_.log_prefix << format_event(e) << "\n";
+  });
+}
+
+void Vehicle::stop_helpers() noexcept {
+  logging_ = false;
+  if (logger_.joinable()) logger_.join();
+  if (writer_) {
+    try {
+      writer_->stop();
+    } catch (const std::exception& e) {
+      std::cerr << options_.log_prefix << e.what() << "\n";
+    }
+  }
+}
+
+std::vector<ThreadSpec> Vehicle::threads() const {
+  const RealtimeParams& rt = config_.scheduler.realtime;
+  std::vector<ThreadSpec> table;
+  table.push_back({"tick",
+                   rt.sched_fifo ? "SCHED_FIFO " + std::to_string(rt.priority) : "SCHED_OTHER",
+                   us(config_.scheduler.period_ms),
+                   "capture, estimate, control, actuate, telemetry record; allocates nothing"});
+  if (options_.helper_threads) {
+    if (config_.telemetry.enabled) {
+      table.push_back({"telemetry writer", "SCHED_OTHER", us(config_.telemetry.drain_period_ms),
+                       "drains the telemetry ring into CSV"});
+    }
+    table.push_back(
+        {"event logger", "SCHED_OTHER", kLoggerPeriod, "mission and failsafe events to the log"});
+  }
+  return table;
+}
+
+}  // namespace rovctl::app

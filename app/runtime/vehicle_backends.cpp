@@ -1,0 +1,81 @@
+// Backend selection for the vehicle commands.
+#include "app/runtime/vehicle_backends.hpp"
+
+#include "app/runtime/errors.hpp"
+#include "drivers/camera_factory.hpp"
+#include "drivers/monotonic_clock.hpp"
+#include "drivers/thruster_bus_factory.hpp"
+#include "estimator/stereo_calibration.hpp"
+#include "hal/mock/trial_generator.hpp"
+
+namespace rovctl::app {
+
+hal::StereoRig load_rig(const AppConfig& config) {
+  try {
+    return estimator::load_stereo_calibration(config.calibration_file);
+  } catch (const std::exception& e) {
+    throw ConfigError(e.what());  // names the calibration file and the key
+  }
+}
+
+namespace {
+
+std::unique_ptr<hal::mock::SimulatedHal> make_sim(const AppConfig& config,
+                                                  const hal::StereoRig& rig,
+                                                  const hal::mock::TrialConditions& trial,
+                                                  bool realtime) {
+  hal::mock::SimParams sim = hal::mock::params_for_trial(config.sim, trial);
+  sim.realtime = realtime;
+  return std::make_unique<hal::mock::SimulatedHal>(sim, config.vehicle, config.station, rig,
+                                                   config.marker, trial);
+}
+
+}  // namespace
+
+VehicleBackends make_trial_backends(const AppConfig& config, const hal::StereoRig& rig,
+                                    const hal::mock::TrialConditions& trial, bool realtime) {
+  VehicleBackends b;
+  b.sim = make_sim(config, rig, trial, realtime);
+  b.clock = &b.sim->clock();
+  b.sensors = &b.sim->sensors();
+  b.camera = &b.sim->camera();
+  b.bus = &b.sim->bus();
+  return b;
+}
+
+VehicleBackends make_vehicle_backends(const AppConfig& config, const hal::StereoRig& rig) {
+  VehicleBackends b;
+  const bool mock_camera = config.camera.backend == "mock";
+  const bool mock_bus = config.thruster_bus.backend == "mock";
+  if (mock_camera || mock_bus) {
+    // Hardware in the loop: the simulated world starts as trial 0 and runs on the wall clock.
+    const hal::mock::TrialGenerator generator(config.sim, config.vehicle, rig, config.marker);
+    b.sim = make_sim(config, rig, generator.make(0, 1), true);
+    b.clock = &b.sim->clock();
+    b.sensors = &b.sim->sensors();
+  } else {
+    b.real_clock = std::make_unique<drivers::MonotonicClock>();
+    b.clock = b.real_clock.get();
+  }
+  if (mock_camera) {
+    b.camera = &b.sim->camera();
+  } else {
+    b.real_camera = drivers::make_stereo_camera(config.camera, *b.clock);
+    b.camera = b.real_camera.get();
+  }
+  if (mock_bus) {
+    b.bus = &b.sim->bus();
+  } else {
+    b.real_bus =
+        drivers::make_thruster_bus(config.thruster_bus, config.vehicle.thrusters.thrusters.size());
+    b.bus = b.real_bus.get();
+  }
+  if (b.camera == nullptr || b.bus == nullptr) {
+    throw ConfigError(config.config_file + ": camera.backend '" + config.camera.backend +
+                      "' / thruster_bus.backend '" + config.thruster_bus.backend +
+                      "': no such backend");
+  }
+  return b;
+}
+
+}  // namespace rovctl::app

@@ -1,0 +1,250 @@
+// The application's tick. Stage order as in ARCHITECTURE.md; every failure path ends in a written
+// command (neutral in the safe state), so the thrusters never keep a stale command.
+#include "app/runtime/vehicle_loop.hpp"
+
+#include <cmath>
+#include <cstdio>
+
+#include "hal/model/docking_station.hpp"
+
+namespace rovctl::app {
+namespace {
+
+constexpr std::chrono::seconds kSettleAfterEnd{1};
+
+bool finite_pose(const Eigen::Isometry3d& T) { return T.matrix().allFinite(); }
+
+void put_pose(const Eigen::Isometry3d& T, std::array<double, 3>& t, std::array<double, 4>& q) {
+  const Eigen::Quaterniond r(T.linear());
+  t = {T.translation().x(), T.translation().y(), T.translation().z()};
+  q = {r.w(), r.x(), r.y(), r.z()};
+}
+
+}  // namespace
+
+std::string format_event(const LoopEvent& e) {
+  char line[256];
+  const double t = std::chrono::duration<double>(e.time).count();
+  if (e.failsafe) {
+    std::snprintf(line, sizeof(line), "%9.3f s  FAILSAFE %s -> %s", t, control::to_string(e.cause),
+                  control::to_string(e.action));
+  } else {
+    std::snprintf(line, sizeof(line), "%9.3f s  mission %s -> %s (%s, aborts %d)", t,
+                  control::to_string(e.from), control::to_string(e.to), e.reason, e.aborts);
+  }
+  return line;
+}
+
+VehicleLoop::VehicleLoop(const AppConfig& config, const hal::StereoRig& rig,
+                         hal::StereoCamera& camera, hal::ThrusterBus& bus, hal::Sensors* sensors,
+                         CyclicScheduler& scheduler, TelemetryRing* telemetry, std::uint64_t seed)
+    : config_(config),
+      camera_(camera),
+      bus_(bus),
+      sensors_(sensors),
+      scheduler_(scheduler),
+      telemetry_(telemetry),
+      estimator_(rig, config.marker, config.estimator, seed),
+      servo_(config.control.servo, config.vehicle.T_body_cl()),
+      attitude_(config.control.attitude),
+      allocator_(config.vehicle.thrusters, config.control.allocation),
+      mission_(config.mission, config.vehicle.T_body_cl(),
+               hal::docked_T_cl_marker(config.vehicle.T_body_cl(), config.vehicle.probe_tip_body_m,
+                                       config.station),
+               config.vehicle.probe_tip_body_m),
+      failsafe_(config.control.failsafe) {
+  // Start-up allocations: the frame buffers at the calibrated size, the neutral command.
+  frame_.left_bgr.create(rig.left.height_px, rig.left.width_px, CV_8UC3);
+  frame_.right_bgr.create(rig.right.height_px, rig.right.width_px, CV_8UC3);
+  allocator_.neutral(neutral_);
+  command_ = neutral_;
+}
+
+bool VehicleLoop::arm(std::string& error) {
+  if (bus_.write(neutral_) == hal::BusStatus::fault || bus_.arm(true) == hal::BusStatus::fault) {
+    error = bus_.name() + ": could not arm the thrusters";
+    return false;
+  }
+  armed_ = true;
+  return true;
+}
+
+void VehicleLoop::disarm() {
+  if (!armed_) return;
+  bus_.write(neutral_);
+  bus_.arm(false);
+  armed_ = false;
+}
+
+void VehicleLoop::queue(const LoopEvent& e) {
+  if (!events_.try_push(e)) ++dropped_events_;
+}
+
+bool VehicleLoop::tick(const TickInfo& info) {
+  using control::MissionState;
+  const std::chrono::nanoseconds now = info.deadline;
+  ++ticks_;
+  TelemetryRecord rec;
+  std::uint32_t flags = 0;
+
+  hal::GrabStatus grab;
+  {
+    auto timer = scheduler_.stage(Stage::capture);
+    grab = camera_.grab(frame_);
+  }
+  bool have_images = grab == hal::GrabStatus::ok;
+  if (have_images) {
+    auto timer = scheduler_.stage(Stage::segment);
+    // An image the calibration does not describe is a camera fault, not an exception.
+    if (!estimator_.segment(frame_.left_bgr, frame_.right_bgr)) {
+      grab = hal::GrabStatus::device_lost;
+      have_images = false;
+    }
+  }
+  if (!have_images) {
+    ++grab_failures_;
+    flags |= telemetry_flag::capture_failed;
+  }
+
+  {
+    auto timer = scheduler_.stage(Stage::estimate);
+    if (have_images) {
+      estimate_ = estimator_.estimate();
+    } else {
+      estimate_.recognised = false;
+      estimate_.generations = 0;
+    }
+  }
+  const bool seen = have_images && estimate_.recognised && finite_pose(estimate_.T_cl_marker) &&
+                    std::isfinite(estimate_.fitness);
+  if (seen) ++recognised_ticks_;
+
+  control::Wrench wrench = control::Wrench::Zero();
+  control::MissionOutput out;
+  control::SafeAction action = control::SafeAction::none;
+  {
+    auto timer = scheduler_.stage(Stage::control);
+    bool contact = false;
+    const bool have_readings = sensors_ != nullptr && sensors_->read(readings_);
+    if (have_readings) contact = readings_.dock_contact_valid && readings_.dock_contact;
+    control::MissionInput in;
+    in.now = now;
+    in.recognised = seen;
+    in.fitness = estimate_.fitness;
+    in.T_cl_marker = estimate_.T_cl_marker;
+    in.contact = contact;
+    out = mission_.update(in);
+    if (out.thrusters_enabled) {
+      if (out.servo_active) {
+        if (out.servo_restart) servo_.reset();
+        const std::chrono::nanoseconds dt =
+            last_servo_time_.count() < 0 ? info.period : now - last_servo_time_;
+        wrench = servo_.update(estimate_.T_cl_marker, out.T_cl_marker_desired, dt);
+        last_servo_time_ = now;
+      } else {
+        // Keep the integral's trim (against the current) while the marker is briefly unseen.
+        wrench = servo_.hold_wrench_body();
+        if (out.use_override) wrench += out.wrench_override_body;
+        last_servo_time_ = std::chrono::nanoseconds{-1};
+      }
+      // Roll and pitch from the IMU in every state: the vision servo only damps them, and a
+      // tipped vehicle loses the marker.
+      Eigen::Vector2d level_nm;
+      if (!config_.control.servo.six_dof && have_readings &&
+          attitude_.update(readings_, level_nm)) {
+        wrench[3] = level_nm.x();
+        wrench[4] = level_nm.y();
+      }
+    }
+    control::FailsafeInput fs;
+    fs.now = now;
+    fs.grab = grab;
+    fs.bus = bus_status_;
+    fs.T_cl_marker = estimate_.T_cl_marker;
+    fs.fitness = have_images ? estimate_.fitness : 0.0;
+    fs.wrench_body = wrench;
+    fs.mission = out.state;
+    action = failsafe_.update(fs);
+    if (action != control::SafeAction::none || !out.thrusters_enabled) {
+      command_ = neutral_;
+    } else {
+      servo_.set_allocation_fraction(allocator_.allocate(wrench, command_));
+    }
+  }
+
+  {
+    auto timer = scheduler_.stage(Stage::actuate);
+    if (action == control::SafeAction::disarm && armed_) {
+      bus_.write(neutral_);
+      bus_status_ = bus_.arm(false);
+      armed_ = false;
+    } else {
+      bus_status_ = bus_.write(command_);
+    }
+  }
+
+  {
+    auto timer = scheduler_.stage(Stage::telemetry);
+    control::MissionEvent me;
+    while (mission_.pop_event(me)) {
+      LoopEvent e;
+      e.time = me.time;
+      e.from = me.from;
+      e.to = me.to;
+      e.reason = me.reason;
+      e.aborts = me.aborts;
+      queue(e);
+    }
+    control::FailsafeEvent fe;
+    while (failsafe_.pop_event(fe)) {
+      LoopEvent e;
+      e.failsafe = true;
+      e.time = fe.time;
+      e.cause = fe.cause;
+      e.action = fe.action;
+      queue(e);
+    }
+    if (telemetry_ != nullptr) {
+      fill_schedule_fields(rec, info, scheduler_);
+      rec.capture_ns = frame_.left_stamp.count();
+      rec.mission_state = static_cast<std::int32_t>(out.state);
+      rec.generations = estimate_.generations;
+      if (have_images) {
+        rec.fitness = estimate_.fitness;
+        put_pose(estimate_.T_cl_marker, rec.est_t_m, rec.est_q_wxyz);
+        flags |= telemetry_flag::estimate_valid;
+      }
+      if (seen) flags |= telemetry_flag::recognised;
+      if (out.errors_valid) {
+        rec.dock_lateral_error_m = out.lateral_error_m;
+        rec.dock_axial_error_m = out.axial_error_m;
+        rec.dock_yaw_error_rad = out.yaw_error_rad;
+        flags |= telemetry_flag::dock_errors_valid;
+      }
+      if (out.servo_active) {
+        for (int i = 0; i < 6; ++i) rec.pose_error[i] = servo_.error()[i];
+      }
+      for (int i = 0; i < 6; ++i) rec.wrench_body[i] = wrench[i];
+      rec.thruster_count = static_cast<std::int32_t>(command_.count);
+      for (std::size_t i = 0; i < command_.count && i < hal::kMaxThrusters; ++i) {
+        rec.thruster_cmd[i] = command_.thrust_fraction[i];
+      }
+      rec.bus_status = static_cast<std::int32_t>(bus_status_);
+      if (armed_) flags |= telemetry_flag::armed;
+      if (failsafe_.tripped()) flags |= telemetry_flag::failsafe;
+      rec.flags |= flags;
+      telemetry_->try_push(rec);
+    }
+  }
+
+  const bool ended =
+      out.state == MissionState::docked || out.state == MissionState::failed || failsafe_.tripped();
+  if (!ended) {
+    ended_at_ = std::chrono::nanoseconds{-1};
+    return true;
+  }
+  if (ended_at_.count() < 0) ended_at_ = now;
+  return now - ended_at_ < kSettleAfterEnd;
+}
+
+}  // namespace rovctl::app

@@ -1,0 +1,104 @@
+// VehicleLoop: one 33 ms tick of the application — capture, estimate, mission and servo,
+// failsafe, allocation, actuate, telemetry — over the hal interfaces, so the same code flies the
+// vehicle and the simulation. Nothing in tick() allocates or blocks on a non-real-time thread.
+#pragma once
+
+#include <Eigen/Geometry>
+#include <chrono>
+#include <cstdint>
+#include <memory>
+#include <string>
+
+#include "app/runtime/app_config.hpp"
+#include "app/runtime/cyclic_scheduler.hpp"
+#include "app/runtime/telemetry.hpp"
+#include "control/attitude_stabilizer.hpp"
+#include "control/control_allocation_pseudo_inverse.hpp"
+#include "control/failsafe.hpp"
+#include "control/mission.hpp"
+#include "control/pd_visual_servo.hpp"
+#include "estimator/pose_estimator.hpp"
+#include "hal/interfaces/sensors.hpp"
+#include "hal/interfaces/stereo_camera.hpp"
+#include "hal/interfaces/thruster_bus.hpp"
+#include "hal/model/stereo_rig.hpp"
+#include "hal/primitives/spsc_ring.hpp"
+
+namespace rovctl::app {
+
+// A mission transition or failsafe trip, handed from the tick to whoever logs (POD, no heap).
+struct LoopEvent {
+  std::chrono::nanoseconds time{0};
+  bool failsafe = false;
+  control::MissionState from = control::MissionState::search;
+  control::MissionState to = control::MissionState::search;
+  control::FailsafeCause cause = control::FailsafeCause::none;
+  control::SafeAction action = control::SafeAction::none;
+  const char* reason = "";  // static string
+  int aborts = 0;
+};
+std::string format_event(const LoopEvent& e);
+
+class VehicleLoop {
+ public:
+  // `telemetry` may be null.
+  VehicleLoop(const AppConfig& config, const hal::StereoRig& rig, hal::StereoCamera& camera,
+              hal::ThrusterBus& bus, hal::Sensors* sensors, CyclicScheduler& scheduler,
+              TelemetryRing* telemetry, std::uint64_t seed);
+  VehicleLoop(const VehicleLoop&) = delete;
+  VehicleLoop& operator=(const VehicleLoop&) = delete;
+
+  // Arms the thrusters (neutral first). False with a message naming the bus on failure.
+  bool arm(std::string& error);
+  // One tick; false when the mission has ended (docked and settled, failed, or failsafe tripped).
+  bool tick(const TickInfo& info);
+  // Neutral and disarm; safe to call more than once.
+  void disarm();
+
+  // Events queued by tick(); pop from the logging side (the same thread in simulation).
+  bool pop_event(LoopEvent& e) { return events_.try_pop(e); }
+
+  const control::Mission& mission() const { return mission_; }
+  const control::Failsafe& failsafe() const { return failsafe_; }
+  const estimator::PoseEstimate& last_estimate() const { return estimate_; }
+  const hal::ThrusterCommand& last_command() const { return command_; }
+  std::uint64_t ticks() const { return ticks_; }
+  std::uint64_t recognised_ticks() const { return recognised_ticks_; }
+  std::uint64_t grab_failures() const { return grab_failures_; }
+  std::uint64_t dropped_events() const { return dropped_events_; }
+
+ private:
+  void queue(const LoopEvent& e);
+
+  const AppConfig& config_;
+  hal::StereoCamera& camera_;
+  hal::ThrusterBus& bus_;
+  hal::Sensors* sensors_;
+  CyclicScheduler& scheduler_;
+  TelemetryRing* telemetry_;
+
+  estimator::PoseEstimator estimator_;
+  control::PdVisualServo servo_;
+  control::AttitudeStabilizer attitude_;
+  control::ControlAllocator allocator_;
+  control::Mission mission_;
+  control::Failsafe failsafe_;
+  SpscRing<LoopEvent> events_{256};
+
+  hal::StereoFrame frame_;
+  hal::SensorReadings readings_;
+  estimator::PoseEstimate estimate_;
+  hal::ThrusterCommand command_;
+  hal::ThrusterCommand neutral_;
+  hal::BusStatus bus_status_ = hal::BusStatus::ok;
+  bool armed_ = false;
+  bool disarmed_by_failsafe_ = false;
+  std::chrono::nanoseconds last_servo_time_{-1};
+  std::chrono::nanoseconds ended_at_{-1};
+  std::uint64_t ticks_ = 0;
+  std::uint64_t recognised_ticks_ = 0;
+  std::uint64_t grab_failures_ = 0;
+  std::uint64_t dropped_events_ = 0;
+};
+
+}  // namespace rovctl::app

@@ -1,0 +1,121 @@
+// The trial runner: builds the mock HAL for the trial, arms, runs the cyclic scheduler over the
+// VehicleLoop, and reads the outcome from the simulator's truth (never shown to the loop).
+#include "app/tools/docking_trial.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <iostream>
+
+#include "app/runtime/vehicle.hpp"
+#include "hal/primitives/percentile.hpp"
+
+namespace rovctl::app {
+namespace {
+
+double ms(std::chrono::nanoseconds d) {
+  return std::chrono::duration<double, std::milli>(d).count();
+}
+
+void put_pose(const Eigen::Isometry3d& T, std::array<double, 3>& t, std::array<double, 4>& q) {
+  const Eigen::Quaterniond r(T.linear());
+  t = {T.translation().x(), T.translation().y(), T.translation().z()};
+  q = {r.w(), r.x(), r.y(), r.z()};
+}
+
+// The simulator's truth beside the estimate in one record; the loop itself never sees it.
+void score_against_truth(const Eigen::Isometry3d& truth, TelemetryRecord& r) {
+  put_pose(truth, r.truth_t_m, r.truth_q_wxyz);
+  r.flags |= telemetry_flag::truth_valid;
+  if ((r.flags & telemetry_flag::estimate_valid) == 0) return;
+  const Eigen::Vector3d t(r.est_t_m[0], r.est_t_m[1], r.est_t_m[2]);
+  const Eigen::Quaterniond q(r.est_q_wxyz[0], r.est_q_wxyz[1], r.est_q_wxyz[2], r.est_q_wxyz[3]);
+  r.est_error_m = (truth.translation() - t).norm();
+  r.est_error_rad = Eigen::AngleAxisd(truth.linear().transpose() * q.toRotationMatrix()).angle();
+}
+
+}  // namespace
+
+TrialResult run_docking_trial(const AppConfig& config, const hal::StereoRig& rig,
+                              const hal::mock::TrialConditions& conditions,
+                              const TrialOptions& options) {
+  TrialResult result;
+  result.conditions = conditions;
+
+  VehicleOptions vehicle_options;
+  vehicle_options.seed = conditions.seed * 7919u + static_cast<std::uint64_t>(conditions.index);
+  vehicle_options.helper_threads = false;  // this thread drains between ticks
+  vehicle_options.min_ring_capacity = 64;
+  Vehicle vehicle(config, rig, make_trial_backends(config, rig, conditions, options.realtime),
+                  vehicle_options);
+  std::string error;
+  if (!vehicle.open(error)) throw std::runtime_error("mock HAL: " + error);
+  if (!vehicle.arm(error)) throw std::runtime_error(error);
+  VehicleLoop& loop = vehicle.loop();
+  const hal::mock::SimulatedWorld& world = vehicle.backends().sim->world();
+
+  const auto max_ticks = static_cast<std::uint64_t>(
+      options.max_time_s / std::chrono::duration<double>(vehicle.scheduler().period()).count());
+  if (options.keep_records) result.records.reserve(max_ticks + 1);
+  std::vector<double> estimate_errors_mm;
+  estimate_errors_mm.reserve(max_ticks + 1);
+  double estimator_ms_sum = 0.0;
+  bool captured = false;
+
+  // Logging, truth and bookkeeping after each tick: the simulation's non-real-time side. The
+  // ring is drained every tick, so a record is this tick's and the world's truth is its truth.
+  auto drain = [&]() {
+    LoopEvent e;
+    while (loop.pop_event(e)) {
+      result.events.push_back(format_event(e));
+      if (options.log_events)
+        std::cerr << "trial " << conditions.index << ": " << result.events.back() << "\n";
+    }
+    TelemetryRecord r;
+    while (vehicle.telemetry().try_pop(r)) {
+      score_against_truth(world.truth().T_cl_marker, r);
+      if ((r.flags & telemetry_flag::recognised) && (r.flags & telemetry_flag::truth_valid)) {
+        estimate_errors_mm.push_back(r.est_error_m * 1000.0);
+      }
+      if (options.keep_records) result.records.push_back(r);
+    }
+    const auto& d = world.docking();
+    if (d.docked && !captured) {
+      captured = true;
+      result.time_to_dock_s = std::chrono::duration<double>(d.docked_at).count();
+      result.lateral_error_mm = d.lateral_error_m * 1000.0;
+      result.yaw_error_deg = d.yaw_error_rad * 180.0 / M_PI;
+    }
+  };
+
+  const SchedulerStats& stats = vehicle.run(max_ticks, [&](const TickInfo&) {
+    // CPU time, not the virtual clock's stage time (which does not advance while computing).
+    estimator_ms_sum +=
+        std::chrono::duration<double, std::milli>(loop.last_estimate().compute_time).count();
+    drain();
+  });
+  vehicle.make_safe();
+  drain();
+
+  result.docked = world.docking().docked;
+  result.mission_docked = loop.mission().state() == control::MissionState::docked;
+  result.success = result.docked && result.lateral_error_mm <= kSuccessLateralMm &&
+                   std::abs(result.yaw_error_deg) <= kSuccessYawDeg;
+  result.sim_time_s = std::chrono::duration<double>(world.time()).count();
+  result.final_state = control::to_string(loop.mission().state());
+  result.aborts = loop.mission().aborts();
+  if (loop.failsafe().tripped()) result.failsafe = control::to_string(loop.failsafe().cause());
+  result.ticks = stats.ticks;
+  result.overruns = stats.skipped_releases;
+  result.jitter_p99_ms = ms(stats.jitter.percentile(0.99));
+  result.jitter_max_ms = ms(stats.jitter.max());
+  result.estimator_ms_mean =
+      stats.ticks > 0 ? estimator_ms_sum / static_cast<double>(stats.ticks) : 0.0;
+  result.recognised_fraction = stats.ticks > 0 ? static_cast<double>(loop.recognised_ticks()) /
+                                                     static_cast<double>(stats.ticks)
+                                               : 0.0;
+  result.estimate_error_mm_median =
+      estimate_errors_mm.empty() ? -1.0 : hal::percentile(estimate_errors_mm, 0.5);
+  return result;
+}
+
+}  // namespace rovctl::app

@@ -1,0 +1,57 @@
+// One closed-loop docking trial: the real VehicleLoop and scheduler against a SimulatedHal, from
+// the trial's randomised start until docked, failed or out of time. Shared by `rovctl sim`, the
+// integration tests and the benchmarks.
+#pragma once
+
+#include <chrono>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "app/runtime/app_config.hpp"
+#include "app/runtime/telemetry.hpp"
+#include "hal/mock/trial_generator.hpp"
+#include "hal/model/stereo_rig.hpp"
+
+namespace rovctl::app {
+
+struct TrialOptions {
+  bool realtime = false;      // pace by the wall clock (else virtual time)
+  double max_time_s = 150.0;  // sim time limit per trial
+  bool keep_records = false;  // keep every tick's telemetry (for CSV and plots)
+  bool log_events = false;    // print mission/failsafe events to stderr live
+};
+
+struct TrialResult {
+  hal::mock::TrialConditions conditions;
+  bool docked = false;          // the simulator's verdict: captured, centred, aligned
+  bool mission_docked = false;  // the mission reached DOCKED
+  bool success = false;         // docked within the lateral/yaw tolerances at contact
+  double time_to_dock_s = -1.0;
+  double lateral_error_mm = -1.0;  // probe tip off the socket axis at capture
+  double yaw_error_deg = 0.0;      // heading error at capture
+  double sim_time_s = 0.0;
+  std::string final_state;
+  int aborts = 0;
+  std::string failsafe;  // cause, or empty
+  std::uint64_t ticks = 0;
+  std::uint64_t overruns = 0;  // releases skipped
+  double jitter_p99_ms = 0.0;
+  double jitter_max_ms = 0.0;
+  double estimator_ms_mean = 0.0;
+  double recognised_fraction = 0.0;
+  double estimate_error_mm_median = -1.0;  // while recognised
+  std::vector<std::string> events;
+  std::vector<TelemetryRecord> records;  // when keep_records
+};
+
+// Tolerances at contact that count as a successful dock (the targets).
+constexpr double kSuccessLateralMm = 10.0;
+constexpr double kSuccessYawDeg = 3.0;
+
+// Runs trial `conditions` with `config` on the calibrated rig. Throws on bad config.
+TrialResult run_docking_trial(const AppConfig& config, const hal::StereoRig& rig,
+                              const hal::mock::TrialConditions& conditions,
+                              const TrialOptions& options);
+
+}  // namespace rovctl::app

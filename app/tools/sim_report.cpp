@@ -1,0 +1,204 @@
+// Summary statistics, CSV and plots of docking trials.
+#include "app/tools/sim_report.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+
+#include "app/tools/atomic_file.hpp"
+#include "app/tools/json_writer.hpp"
+#include "app/tools/plot.hpp"
+#include "control/mission.hpp"
+#include "hal/primitives/percentile.hpp"
+
+namespace rovctl::app {
+namespace {
+
+// Reports write -1 for a figure with no samples (no trial docked).
+double percentile_or_none(const std::vector<double>& v, double p) {
+  return v.empty() ? -1.0 : hal::percentile(v, p);
+}
+
+}  // namespace
+
+SimSummary summarise(const std::vector<TrialResult>& results) {
+  SimSummary s;
+  s.trials = static_cast<int>(results.size());
+  std::vector<double> times, lateral, yaw, est_err;
+  double estimator_ms = 0.0;
+  for (const TrialResult& r : results) {
+    if (r.docked) ++s.captured;
+    if (r.success) ++s.docked;
+    if (r.docked) {
+      times.push_back(r.time_to_dock_s);
+      lateral.push_back(r.lateral_error_mm);
+      yaw.push_back(std::abs(r.yaw_error_deg));
+    }
+    if (r.estimate_error_mm_median >= 0) est_err.push_back(r.estimate_error_mm_median);
+    s.ticks += r.ticks;
+    s.overruns += r.overruns;
+    s.tick_jitter_ms_p99 = std::max(s.tick_jitter_ms_p99, r.jitter_p99_ms);
+    s.tick_jitter_ms_max = std::max(s.tick_jitter_ms_max, r.jitter_max_ms);
+    estimator_ms += r.estimator_ms_mean;
+  }
+  s.success_rate = s.trials > 0 ? static_cast<double>(s.docked) / s.trials : 0.0;
+  s.time_to_dock_s_median = percentile_or_none(times, 0.5);
+  s.final_lateral_error_mm_p95 = percentile_or_none(lateral, 0.95);
+  s.final_yaw_error_deg_p95 = percentile_or_none(yaw, 0.95);
+  s.estimator_ms_mean = s.trials > 0 ? estimator_ms / s.trials : 0.0;
+  s.estimate_error_mm_median = percentile_or_none(est_err, 0.5);
+  return s;
+}
+
+std::string summary_json(const SimSummary& s) {
+  JsonWriter j;
+  j.begin_object()
+      .field("trials", s.trials)
+      .field("docked", s.docked)
+      .field("success_rate", s.success_rate)
+      .field("time_to_dock_s_median", s.time_to_dock_s_median)
+      .field("final_lateral_error_mm_p95", s.final_lateral_error_mm_p95)
+      .field("final_yaw_error_deg_p95", s.final_yaw_error_deg_p95)
+      .field("overruns", static_cast<long>(s.overruns))
+      .field("tick_jitter_ms_p99", s.tick_jitter_ms_p99)
+      .field("captured", s.captured)
+      .field("ticks", static_cast<long>(s.ticks))
+      .field("tick_jitter_ms_max", s.tick_jitter_ms_max)
+      .field("estimator_ms_mean", s.estimator_ms_mean)
+      .field("estimate_error_mm_median", s.estimate_error_mm_median)
+      .end_object();
+  return j.str();
+}
+
+std::string summary_text(const SimSummary& s, const std::vector<TrialResult>& results) {
+  std::ostringstream o;
+  char line[512];
+  o << "trial  start_m  current_mps  result     state    aborts  t_dock_s  lateral_mm  yaw_deg  "
+       "est_err_mm\n";
+  for (const TrialResult& r : results) {
+    std::snprintf(
+        line, sizeof(line), "%5d  %7.2f  %11.3f  %-9s  %-7s  %6d  %8.1f  %10.1f  %7.2f  %10.1f\n",
+        r.conditions.index, r.conditions.distance_m, r.conditions.current_mean_world_mps.norm(),
+        r.success ? "DOCKED" : (r.docked ? "off-tol" : "no dock"), r.final_state.c_str(), r.aborts,
+        r.time_to_dock_s, r.lateral_error_mm, r.yaw_error_deg, r.estimate_error_mm_median);
+    o << line;
+  }
+  std::snprintf(
+      line, sizeof(line),
+      "\ndocked %d of %d (%.0f %%)  time to dock median %.1f s  lateral error p95 %.1f mm  "
+      "yaw error p95 %.2f deg\nticks %llu  overruns %llu  tick jitter p99 %.3f ms (max %.3f)  "
+      "estimator %.2f ms per tick  estimate error median %.1f mm\n",
+      s.docked, s.trials, 100.0 * s.success_rate, s.time_to_dock_s_median,
+      s.final_lateral_error_mm_p95, s.final_yaw_error_deg_p95,
+      static_cast<unsigned long long>(s.ticks), static_cast<unsigned long long>(s.overruns),
+      s.tick_jitter_ms_p99, s.tick_jitter_ms_max, s.estimator_ms_mean, s.estimate_error_mm_median);
+  o << line;
+  return o.str();
+}
+
+void plot_trial(const TrialResult& trial, const std::string& png_path) {
+  const auto& recs = trial.records;
+  std::vector<double> t;
+  std::vector<double> est[3], truth[3], perr[4], fitness, state, err_mm, err_deg;
+  std::vector<double> thr[hal::kMaxThrusters];
+  const int n_thr = recs.empty() ? 0 : recs.front().thruster_count;
+  for (const TelemetryRecord& r : recs) {
+    t.push_back(r.time_s);
+    const bool has_est = (r.flags & telemetry_flag::recognised) != 0;
+    for (int i = 0; i < 3; ++i) {
+      est[i].push_back(has_est ? r.est_t_m[i] : NAN);
+      truth[i].push_back(r.truth_t_m[i]);
+    }
+    for (int i = 0; i < 3; ++i) perr[i].push_back(r.pose_error[i] * 1000.0);
+    perr[3].push_back(r.pose_error[5] * 180.0 / M_PI);
+    fitness.push_back(r.fitness);
+    err_mm.push_back(has_est ? r.est_error_m * 1000.0 : NAN);
+    err_deg.push_back(has_est ? r.est_error_rad * 180.0 / M_PI : NAN);
+    state.push_back(r.mission_state);
+    for (int i = 0; i < n_thr; ++i) thr[i].push_back(r.thruster_cmd[i]);
+  }
+  char title[256];
+  std::snprintf(title, sizeof(title),
+                "Docking trial %d: start %.2f m, current %.3f m/s -> %s (lateral %.1f mm, yaw %.2f "
+                "deg, %.1f s)",
+                trial.conditions.index, trial.conditions.distance_m,
+                trial.conditions.current_mean_world_mps.norm(),
+                trial.success ? "DOCKED" : trial.final_state.c_str(), trial.lateral_error_mm,
+                trial.yaw_error_deg, trial.time_to_dock_s);
+  Plot plot(title, 1400);
+  auto& p1 = plot.add_panel("Marker position in the left camera: estimate vs truth", "time [s]",
+                            "position [m]");
+  const char* axis[3] = {"x", "y", "z"};
+  for (int i = 0; i < 3; ++i) {
+    p1.line(std::string("truth ") + axis[i], t, truth[i]);
+    p1.line(std::string("estimate ") + axis[i], t, est[i]);
+  }
+  auto& p2 =
+      plot.add_panel("Estimation error (while recognised)", "time [s]", "error [mm] / [deg]");
+  p2.line("translation [mm]", t, err_mm).line("rotation [deg]", t, err_deg);
+  auto& p3 = plot.add_panel("Servo pose error (body frame, desired - estimated)", "time [s]",
+                            "[mm] / [deg]");
+  p3.line("x fwd [mm]", t, perr[0]).line("y stbd [mm]", t, perr[1]).line("z down [mm]", t, perr[2]);
+  p3.line("yaw [deg]", t, perr[3]);
+  auto& p4 = plot.add_panel("RM-GA fitness of the best individual", "time [s]", "fitness");
+  p4.line("fitness", t, fitness).hline(0.6, "recognised (0.6)").y_limits(0.0, 1.0);
+  auto& p5 = plot.add_panel("Thruster commands", "time [s]", "fraction of full thrust");
+  for (int i = 0; i < n_thr; ++i) p5.line("T" + std::to_string(i + 1), t, thr[i]);
+  p5.y_limits(-1.0, 1.0);
+  auto& p6 = plot.add_panel("Mission state", "time [s]", "", 260);
+  p6.step("state", t, state);
+  std::vector<std::pair<double, std::string>> cats;
+  for (int s = 0; s <= static_cast<int>(control::MissionState::failed); ++s) {
+    cats.emplace_back(s, control::to_string(static_cast<control::MissionState>(s)));
+  }
+  p6.y_categories(cats);
+  plot.save_png(png_path);
+}
+
+void write_sim_outputs(const std::string& dir, const std::vector<TrialResult>& results,
+                       const SimSummary& summary, int plot_trials) {
+  std::filesystem::create_directories(dir);
+  std::ostringstream table;
+  table << "trial,seed,start_distance_m,bearing_deg,heading_offset_deg,current_mps,noise_sigma,"
+           "success,captured,final_state,aborts,failsafe,time_to_dock_s,lateral_error_mm,yaw_error_"
+           "deg,"
+           "sim_time_s,ticks,overruns,jitter_p99_ms,estimator_ms_mean,recognised_fraction,"
+           "estimate_error_mm_median\n";
+  for (const TrialResult& r : results) {
+    const auto& c = r.conditions;
+    table << c.index << ',' << c.seed << ',' << c.distance_m << ',' << c.bearing_deg << ','
+          << c.heading_offset_deg << ',' << c.current_mean_world_mps.norm() << ','
+          << c.image_noise_sigma << ',' << r.success << ',' << r.docked << ',' << r.final_state
+          << ',' << r.aborts << ',' << r.failsafe << ',' << r.time_to_dock_s << ','
+          << r.lateral_error_mm << ',' << r.yaw_error_deg << ',' << r.sim_time_s << ',' << r.ticks
+          << ',' << r.overruns << ',' << r.jitter_p99_ms << ',' << r.estimator_ms_mean << ','
+          << r.recognised_fraction << ',' << r.estimate_error_mm_median << '\n';
+  }
+  write_file_atomically(dir + "/trials.csv", table.str());
+  write_file_atomically(dir + "/summary.json", summary_json(summary) + "\n");
+  char name[64];
+  for (const TrialResult& r : results) {
+    if (r.records.empty()) continue;
+    std::string csv = telemetry_csv_header();
+    csv += '\n';
+    char row[4096];
+    for (const TelemetryRecord& rec : r.records) {
+      csv.append(row, format_telemetry_csv_row(rec, row, sizeof(row)));
+      csv += '\n';
+    }
+    std::snprintf(name, sizeof(name), "/trial_%03d.csv", r.conditions.index);
+    write_file_atomically(dir + name, csv);
+    // The first few, and every trial that did not dock within tolerance: those are the ones a
+    // person needs to look at.
+    if (r.conditions.index < plot_trials || !r.success) {
+      std::snprintf(name, sizeof(name), "/trial_%03d.png", r.conditions.index);
+      plot_trial(r, dir + name);
+    }
+  }
+}
+
+}  // namespace rovctl::app

@@ -1,0 +1,41 @@
+// What `rovctl sim` reports over its trials: the summary figures (JSON and text), the per-trial
+// table, each trial's tick-by-tick CSV and the PNG plots a person reviews after a run.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "app/tools/docking_trial.hpp"
+
+namespace rovctl::app {
+
+struct SimSummary {
+  int trials = 0;
+  int docked = 0;    // successful: captured within the lateral/yaw tolerances
+  int captured = 0;  // captured by the socket at all
+  double success_rate = 0.0;
+  double time_to_dock_s_median = -1.0;
+  double final_lateral_error_mm_p95 = -1.0;
+  double final_yaw_error_deg_p95 = -1.0;
+  std::uint64_t ticks = 0;  // over all trials
+  std::uint64_t overruns = 0;
+  double tick_jitter_ms_p99 = 0.0;  // worst trial's p99
+  double tick_jitter_ms_max = 0.0;  // worst tick of any trial
+  double estimator_ms_mean = 0.0;
+  double estimate_error_mm_median = -1.0;
+};
+
+SimSummary summarise(const std::vector<TrialResult>& results);
+std::string summary_json(const SimSummary& s);
+std::string summary_text(const SimSummary& s, const std::vector<TrialResult>& results);
+
+// trials.csv (one row per trial), trial_NNN.csv (every tick) and trial_NNN.png (plots) into
+// `dir`, each written to a temporary name and renamed. Plots for the first `plot_trials` trials and
+// for every trial that did not dock within tolerance.
+void write_sim_outputs(const std::string& dir, const std::vector<TrialResult>& results,
+                       const SimSummary& summary, int plot_trials);
+
+// The plots of one trial: estimate vs truth, pose error, fitness, thrusters, mission state.
+void plot_trial(const TrialResult& trial, const std::string& png_path);
+
+}  // namespace rovctl::app

@@ -1,0 +1,138 @@
+// The marker scene renderer: what it draws where, determinism, and its water and noise options.
+#include "hal/mock/scene_renderer.hpp"
+
+#include <gtest/gtest.h>
+
+#include <opencv2/core.hpp>
+
+#include "hal/model/pose.hpp"
+
+namespace rovctl::hal::mock {
+namespace {
+
+CameraModel distorted_camera() {
+  CameraModel c;
+  c.fx_px = 552.0;
+  c.fy_px = 549.0;
+  c.cx_px = 331.5;
+  c.cy_px = 236.0;
+  c.k1 = -0.12;
+  c.k2 = 0.05;
+  return c;
+}
+
+Eigen::Isometry3d ahead(double z) {
+  return make_pose({0.0, 0.0, z}, Eigen::Quaterniond::Identity());
+}
+
+cv::Vec3b pixel_at(const cv::Mat& image, const CameraModel& cam, const Eigen::Vector3d& p) {
+  Eigen::Vector2d uv = Eigen::Vector2d::Zero();
+  EXPECT_TRUE(cam.project(p, uv));
+  return image.at<cv::Vec3b>(static_cast<int>(std::lround(uv.y())),
+                             static_cast<int>(std::lround(uv.x())));
+}
+
+TEST(SceneRenderer, DrawsEachSphereInItsColourAtItsProjection) {
+  const CameraModel cam = distorted_camera();
+  const MarkerModel marker = MarkerModel::standard();
+  RenderOptions o;
+  o.noise_sigma = 0.0;
+  const SceneRenderer r(cam, marker, o);
+  cv::Mat image;
+  const Eigen::Isometry3d T = ahead(0.5);
+  r.render(T, 1, image);
+  ASSERT_EQ(image.type(), CV_8UC3);
+  ASSERT_EQ(image.cols, 640);
+  ASSERT_EQ(image.rows, 480);
+  for (const MarkerSphere& s : marker.spheres) {
+    // A point on the sphere's lit, camera-facing side (left of centre, away from the highlight).
+    const Eigen::Vector3d p = T * s.centre_marker_m + Eigen::Vector3d(-0.008, 0.008, 0.0);
+    const cv::Vec3b bgr = pixel_at(image, cam, p);
+    const int dominant = s.colour == ColourClass::red ? 2 : s.colour == ColourClass::green ? 1 : 0;
+    for (int ch = 0; ch < 3; ++ch) {
+      if (ch != dominant) {
+        EXPECT_GT(bgr[dominant], bgr[ch] + 40) << s.name;
+      }
+    }
+  }
+  // Far from the marker: the background gradient, darker at the bottom.
+  EXPECT_GT(image.at<cv::Vec3b>(5, 5)[1], image.at<cv::Vec3b>(474, 5)[1]);
+}
+
+TEST(SceneRenderer, DeterministicPerSeedAndNoAllocationWhenSized) {
+  const CameraModel cam = distorted_camera();
+  const SceneRenderer r(cam, MarkerModel::standard(), RenderOptions{});
+  cv::Mat a, b, c;
+  r.render(ahead(0.6), 42, a);
+  const std::uint8_t* data = a.data;
+  r.render(ahead(0.6), 42, a);
+  EXPECT_EQ(a.data, data);  // rendered into the existing buffer
+  r.render(ahead(0.6), 42, b);
+  r.render(ahead(0.6), 43, c);
+  EXPECT_EQ(cv::norm(a, b, cv::NORM_INF), 0.0);
+  EXPECT_GT(cv::norm(a, c, cv::NORM_L1), 0.0);
+}
+
+TEST(SceneRenderer, NoiseHasTheRequestedSpread) {
+  const CameraModel cam = distorted_camera();
+  RenderOptions clean;
+  clean.noise_sigma = 0.0;
+  RenderOptions noisy;
+  noisy.noise_sigma = 4.0;
+  cv::Mat a, b;
+  SceneRenderer(cam, MarkerModel::standard(), clean).render(ahead(0.6), 1, a);
+  SceneRenderer(cam, MarkerModel::standard(), noisy).render(ahead(0.6), 1, b);
+  cv::Mat diff;
+  a.convertTo(a, CV_32F);
+  b.convertTo(b, CV_32F);
+  cv::subtract(b, a, diff);
+  cv::Scalar mean, stddev;
+  cv::meanStdDev(diff.reshape(1), mean, stddev);
+  EXPECT_NEAR(stddev[0], 4.0, 0.6);
+  EXPECT_NEAR(mean[0], 0.0, 0.3);
+}
+
+TEST(SceneRenderer, WaterAttenuatesRedMoreThanBlue) {
+  const CameraModel cam = distorted_camera();
+  const MarkerModel marker = MarkerModel::standard();
+  RenderOptions clear;
+  clear.noise_sigma = 0.0;
+  RenderOptions water = clear;
+  water.water_attenuation_per_m = 1.0;
+  cv::Mat a, b;
+  const Eigen::Isometry3d T = ahead(1.2);
+  SceneRenderer(cam, marker, clear).render(T, 1, a);
+  SceneRenderer(cam, marker, water).render(T, 1, b);
+  const Eigen::Vector3d red = T * marker.spheres[0].centre_marker_m;
+  const Eigen::Vector3d blue = T * marker.spheres[2].centre_marker_m;
+  EXPECT_LT(pixel_at(b, cam, red)[2] + 20, pixel_at(a, cam, red)[2]);
+  EXPECT_NEAR(pixel_at(b, cam, blue)[0], pixel_at(a, cam, blue)[0], 40);
+}
+
+TEST(SceneRenderer, StereoViewsSeeTheMarkerFromTheirOwnPose) {
+  const StereoRig rig = make_parallel_rig(distorted_camera(), 0.178, 0.03);
+  const MarkerModel marker = MarkerModel::standard();
+  RenderOptions o;
+  o.noise_sigma = 0.0;
+  const SceneRenderer l(rig.left, marker, o), r(rig.right, marker, o);
+  cv::Mat lb, rb, expected;
+  const Eigen::Isometry3d T = ahead(0.5);
+  render_stereo(l, r, rig, T, 1, lb, rb);
+  r.render(rig.T_cr_cl * T, 0, expected);
+  EXPECT_EQ(cv::norm(rb, expected, cv::NORM_INF), 0.0);
+  EXPECT_GT(cv::norm(lb, rb, cv::NORM_L1), 0.0);
+}
+
+TEST(SceneRenderer, MarkerBehindTheCameraDrawsOnlyBackground) {
+  const CameraModel cam = distorted_camera();
+  RenderOptions o;
+  o.noise_sigma = 0.0;
+  const SceneRenderer r(cam, MarkerModel::standard(), o);
+  cv::Mat behind, far_away;
+  r.render(ahead(-0.5), 1, behind);
+  r.render(make_pose({50.0, 0.0, 0.5}, Eigen::Quaterniond::Identity()), 1, far_away);
+  EXPECT_EQ(cv::norm(behind, far_away, cv::NORM_INF), 0.0);
+}
+
+}  // namespace
+}  // namespace rovctl::hal::mock
