@@ -130,6 +130,12 @@ MissionOutput Mission::update(const MissionInput& in) {
     seen_frames_ = 0;
     ++unseen_frames_;
   }
+  const bool full = seen && in.full_view;
+  partial_frames_ = (seen && !full) ? partial_frames_ + 1 : 0;
+  const bool blind_zone = have_last_ && -last_axial_m_ <= p_.dock_blind_distance_m;
+  // Outside the blind zone a partial view is no view for docking: the push goes on only on the
+  // full one.
+  const bool seen_dock = full || (seen && blind_zone);
   const bool contact_switch = p_.contact_switch && in.contact;
   const double t_state = seconds(in.now - entered_);
   const bool lost = unseen_frames_ >= p_.lost_frames;
@@ -154,7 +160,7 @@ MissionOutput Mission::update(const MissionInput& in) {
       }
       break;
     case MissionState::align:
-      if (seen && err.lateral_m <= p_.align_lateral_m &&
+      if (full && err.lateral_m <= p_.align_lateral_m &&
           std::abs(err.axial_m + p_.standoff_m) <= p_.align_axial_m &&
           std::abs(err.yaw_rad) <= p_.align_yaw_rad) {
         ++hold_frames_;
@@ -170,19 +176,18 @@ MissionOutput Mission::update(const MissionInput& in) {
       }
       break;
     case MissionState::dock: {
-      const bool vision_contact = p_.contact_from_vision && seen &&
+      const bool vision_contact = p_.contact_from_vision && seen_dock &&
                                   err.axial_m >= p_.vision_contact_depth_m &&
                                   err.lateral_m <= p_.dock_abort_lateral_m;
       contact_frames_ = (contact_switch || vision_contact) ? contact_frames_ + 1 : 0;
-      const bool blind_zone = have_last_ && -last_axial_m_ <= p_.dock_blind_distance_m;
-      if (seen) {
+      if (seen_dock) {
         blind_since_ = std::chrono::nanoseconds{-1};
       } else if (blind_zone && blind_since_.count() < 0) {
         blind_since_ = in.now;
       }
-      const bool lateral_off = seen && err.lateral_m > p_.dock_abort_lateral_m;
-      const bool yaw_off = seen && std::abs(err.yaw_rad) > p_.dock_abort_yaw_rad;
-      if (seen) dock_off_frames_ = (lateral_off || yaw_off) ? dock_off_frames_ + 1 : 0;
+      const bool lateral_off = seen_dock && err.lateral_m > p_.dock_abort_lateral_m;
+      const bool yaw_off = seen_dock && std::abs(err.yaw_rad) > p_.dock_abort_yaw_rad;
+      if (seen_dock) dock_off_frames_ = (lateral_off || yaw_off) ? dock_off_frames_ + 1 : 0;
       const bool off_limits = dock_off_frames_ >= p_.dock_abort_frames;
       if (contact_frames_ >= p_.contact_frames) {
         enter(MissionState::docked, in.now, vision_contact ? "contact (vision)" : "contact");
@@ -190,9 +195,10 @@ MissionOutput Mission::update(const MissionInput& in) {
         enter(MissionState::abort, in.now, "lateral error limit");
       } else if (off_limits && yaw_off) {
         enter(MissionState::abort, in.now, "yaw error limit");
-      } else if (!seen && !blind_zone && lost) {
-        enter(MissionState::abort, in.now, "marker lost");
-      } else if (!seen && blind_zone && seconds(in.now - blind_since_) > p_.dock_blind_timeout_s) {
+      } else if (!seen_dock && !blind_zone && (lost || partial_frames_ >= p_.lost_frames)) {
+        enter(MissionState::abort, in.now, lost ? "marker lost" : "partial view while docking");
+      } else if (!seen_dock && blind_zone &&
+                 seconds(in.now - blind_since_) > p_.dock_blind_timeout_s) {
         enter(MissionState::abort, in.now, "no contact after blind push");
       } else if (t_state > p_.dock_timeout_s) {
         enter(MissionState::abort, in.now, "dock timed out");
@@ -224,9 +230,9 @@ MissionOutput Mission::update(const MissionInput& in) {
       const double back = std::max(p_.standoff_m - p_.dock_speed_mps * seconds(in.now - entered_),
                                    -p_.dock_overshoot_m);
       out.T_cl_marker_desired = offset_along_docking_axis(T_docked_, back);
-      out.servo_active = seen;
-      out.use_override = !seen;
-      if (!seen && blind_since_.count() >= 0) {
+      out.servo_active = seen_dock;
+      out.use_override = !seen_dock;
+      if (!seen_dock && blind_since_.count() >= 0) {
         out.wrench_override_body.head<3>() = docked_axis_body_ * p_.dock_blind_push_n;
       }
       break;

@@ -20,7 +20,11 @@ const char* to_string(MissionState s);
 struct MissionInput {
   std::chrono::nanoseconds now{0};
   bool recognised = false;  // the estimator's verdict
-  double fitness = 0.0;     // the estimate's fitness (also gated by min_fitness)
+  // Every sphere supported in both views (the estimator's ok). A partial view is enough to
+  // search and approach on; aligning for the dock and docking itself need the full view (inside
+  // the blind zone at the end of the push a partial view is all there is).
+  bool full_view = false;
+  double fitness = 0.0;  // the estimate's fitness (also gated by min_fitness)
   Eigen::Isometry3d T_cl_marker = Eigen::Isometry3d::Identity();
   bool contact = false;  // contact switch if the vehicle has one; the sim reports it
 };
@@ -108,6 +112,7 @@ class Mission {
   int aborts_ = 0;
   int seen_frames_ = 0;
   int unseen_frames_ = 0;
+  int partial_frames_ = 0;  // consecutive frames recognised on a partial view
   int hold_frames_ = 0;
   int contact_frames_ = 0;
   int dock_off_frames_ = 0;  // consecutive seen frames past the dock abort limits

@@ -7,7 +7,8 @@ cd "$(dirname "$0")/.."
 packages=(build-essential cmake ninja-build pkg-config git
   libeigen3-dev libopencv-dev libyaml-cpp-dev libmodbus-dev
   libgtest-dev libgmock-dev libbenchmark-dev
-  python3 python3-pymodbus python3-serial python3-serial-asyncio socat clang-format libclang-rt-14-dev)
+  python3 python3-pymodbus python3-serial python3-serial-asyncio socat clang-format libclang-rt-14-dev
+  povray python3-opencv python3-numpy)
 
 missing=()
 for p in "${packages[@]}"; do

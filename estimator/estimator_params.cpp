@@ -40,6 +40,14 @@ void describe(hal::ParamVisitor& v, EstimatorParams& p) {
   v.param(
       "recognition_threshold", p.recognition_threshold,
       {"-", 0.0, 1.0, "fitness at or above which the marker counts as recognised (paper: 0.6)"});
+  v.param("water_correction", p.water_correction,
+          {"-", 0.0, 1.0,
+           "improved mode: white balance to the scene's median colour before the hue windows, "
+           "as a power of the full gain (0 off, 1 full): water takes red first"});
+  v.param("sphere_support", p.sphere_support,
+          {"-", 0.0, 1.0,
+           "score of one sphere in one view (inner hits minus ring hits) at which it counts as "
+           "seen; an estimate is ok only with every sphere seen in both views"});
   v.section("ga", "the genetic algorithm (paper's Table 2)", [&p](hal::ParamVisitor& s) {
     s.param("population", p.ga.population, {"-", 4, 2000, "number of genes"});
     s.param("selection_rate", p.ga.selection_rate,

@@ -44,6 +44,12 @@ struct EstimatorParams {
   int generations_per_frame = 9;
   double time_budget_ms = 15.0;
   double recognition_threshold = 0.6;
+  // A sphere counts as seen in a view when its score(v, s) reaches this (1 = the whole disc on
+  // its colour and none of the ring).
+  double sphere_support = 0.8;
+  // Improved mode: how far the segmentation divides out the scene's colour cast (0 off, 1 full
+  // von Kries white balance to the median colour).
+  double water_correction = 0.0;
   // Improvements (used when mode is "improved").
   bool blob_seeding = true;  // seed individuals from colour blobs triangulated in 3D
   bool refine_elite = true;  // least-squares refinement of the elite on blob centroids

@@ -33,7 +33,11 @@ hal::ColourClass HueSegmenter::classify_exact(const hal::MarkerModel& marker, do
   return hal::ColourClass::none;
 }
 
-HueSegmenter::HueSegmenter(const hal::MarkerModel& marker) : lut_(1u << 18) {
+HueSegmenter::HueSegmenter(const hal::MarkerModel& marker, double water_correction)
+    : lut_(1u << 18), water_correction_(std::clamp(water_correction, 0.0, 1.0)) {
+  for (int c = 0; c < 3; ++c) {
+    for (int v = 0; v < 256; ++v) gain_table_[c][v] = static_cast<std::uint8_t>(v);
+  }
   // Each 6-bit cell is classified by its centre colour (the 4 grey levels it spans average to
   // +1.5).
   for (int b = 0; b < 64; ++b) {
@@ -46,14 +50,66 @@ HueSegmenter::HueSegmenter(const hal::MarkerModel& marker) : lut_(1u << 18) {
   }
 }
 
-void HueSegmenter::segment(const cv::Mat& bgr, cv::Mat& labels) const {
+namespace {
+constexpr double kMaxGain = 2.0;
+}  // namespace
+
+void HueSegmenter::update_gains(const cv::Mat& bgr) {
+  // The scene's median per channel, on a sparse grid: mostly water, backplate and sea floor,
+  // all under the same cast; the spheres are too small to move it.
+  constexpr int kStep = 4;
+  for (auto& h : histogram_) h.fill(0);
+  std::uint32_t n = 0;
+  for (int v = kStep / 2; v < bgr.rows; v += kStep) {
+    const std::uint8_t* in = bgr.ptr<std::uint8_t>(v);
+    for (int u = kStep / 2; u < bgr.cols; u += kStep, ++n) {
+      const std::uint8_t* p = in + 3 * u;
+      ++histogram_[0][p[0]];
+      ++histogram_[1][p[1]];
+      ++histogram_[2][p[2]];
+    }
+  }
+  std::array<double, 3> median{};
+  for (int c = 0; c < 3; ++c) {
+    std::uint32_t sum = 0;
+    int v = 0;
+    while (v < 255 && (sum += histogram_[c][v]) < n / 2) ++v;
+    median[c] = std::max(8.0, static_cast<double>(v));
+  }
+  // Normalised to the mean of the three so that brightness is left to the value floors.
+  const double mean = (median[0] + median[1] + median[2]) / 3.0;
+  for (int c = 0; c < 3; ++c) {
+    // Bounded: in dark, deep-blue water a near-empty red channel would otherwise be multiplied
+    // into noise.
+    gains_[c] = std::clamp(std::pow(mean / median[c], water_correction_), 1.0 / kMaxGain, kMaxGain);
+    for (int v = 0; v < 256; ++v) {
+      gain_table_[c][v] = static_cast<std::uint8_t>(std::min(255.0, std::round(gains_[c] * v)));
+    }
+  }
+}
+
+void HueSegmenter::segment(const cv::Mat& bgr, cv::Mat& labels) {
   CV_Assert(bgr.type() == CV_8UC3);
   labels.create(bgr.rows, bgr.cols, CV_8UC1);
   const std::uint8_t* lut = lut_.data();
+  if (water_correction_ <= 0.0) {
+    for (int v = 0; v < bgr.rows; ++v) {
+      const std::uint8_t* in = bgr.ptr<std::uint8_t>(v);
+      std::uint8_t* out = labels.ptr<std::uint8_t>(v);
+      for (int u = 0; u < bgr.cols; ++u, in += 3) out[u] = lut[index(in[0], in[1], in[2])];
+    }
+    return;
+  }
+  update_gains(bgr);
+  const std::uint8_t* gb = gain_table_[0].data();
+  const std::uint8_t* gg = gain_table_[1].data();
+  const std::uint8_t* gr = gain_table_[2].data();
   for (int v = 0; v < bgr.rows; ++v) {
     const std::uint8_t* in = bgr.ptr<std::uint8_t>(v);
     std::uint8_t* out = labels.ptr<std::uint8_t>(v);
-    for (int u = 0; u < bgr.cols; ++u, in += 3) out[u] = lut[index(in[0], in[1], in[2])];
+    for (int u = 0; u < bgr.cols; ++u, in += 3) {
+      out[u] = lut[index(gb[in[0]], gg[in[1]], gr[in[2]])];
+    }
   }
 }
 

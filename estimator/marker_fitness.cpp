@@ -88,6 +88,17 @@ double MarkerFitness::score_view(const View& view, const Eigen::Vector3d& c,
   return inside * inv_inner_ - outside * inv_outer_;
 }
 
+void MarkerFitness::sphere_scores(const Eigen::Isometry3d& T_cl_marker,
+                                  SphereScores& scores) const {
+  scores = {};
+  if (views_[0].labels == nullptr) return;
+  for (std::size_t i = 0; i < spheres_.size() && i < 3; ++i) {
+    const Eigen::Vector3d c_cl = T_cl_marker * spheres_[i].centre_marker_m;
+    scores[0][i] = score_view(views_[0], c_cl, spheres_[i]);
+    scores[1][i] = score_view(views_[1], views_[1].R_v_cl * c_cl + views_[1].t_v_cl, spheres_[i]);
+  }
+}
+
 double MarkerFitness::evaluate(const Eigen::Isometry3d& T_cl_marker) const {
   if (views_[0].labels == nullptr) return 0.0;
   double sum = 0.0;

@@ -35,6 +35,12 @@ class MarkerFitness {
 
   double evaluate(const Eigen::Isometry3d& T_cl_marker) const;
 
+  // score(v, s) of every sphere in both views at one pose (spheres in the marker's order; unused
+  // entries 0): which spheres the images support, for the estimate's honesty, not the search.
+  using SphereScores = std::array<std::array<double, 3>, 2>;
+  void sphere_scores(const Eigen::Isometry3d& T_cl_marker, SphereScores& scores) const;
+  std::size_t sphere_count() const { return spheres_.size(); }
+
  private:
   struct View {
     hal::CameraModel camera;

@@ -2,6 +2,7 @@
 // switchable: blob seeding during and elite refinement after evolution.
 #include "estimator/pose_estimator.hpp"
 
+#include <cmath>
 #include <stdexcept>
 
 namespace rovctl::estimator {
@@ -27,7 +28,7 @@ PoseEstimator::PoseEstimator(const hal::StereoRig& rig, const hal::MarkerModel& 
                              const EstimatorParams& params, std::uint64_t seed)
     : rig_(rig),
       params_(validated(params)),
-      segmenter_(marker),
+      segmenter_(marker, params_.improved() ? params_.water_correction : 0.0),
       codec_(params_.search),
       fitness_(rig, marker, params_.fitness),
       ga_(params_.ga, codec_, fitness_, seed),
@@ -104,12 +105,19 @@ PoseEstimate PoseEstimator::estimate() {
     // The elite refined on the blob centroids is continuous (not 12-bit) and sub-pixel; it is
     // taken unless it scores clearly worse, which means the blobs were not the marker.
     Eigen::Isometry3d T = estimate.T_cl_marker;
-    if (refiner_.refine(blobs_.blobs(), T)) {
+    RefineReport report;
+    if (refiner_.refine(blobs_.blobs(), T, 1.5, &report)) {
       const double f = fitness_.evaluate(T);
       ++extra_evaluations_;
       if (f >= estimate.fitness - 0.05) {
         estimate.T_cl_marker = T;
         estimate.fitness = f;
+        estimate.refined = true;
+        estimate.refine_rms_px = report.rms_px;
+        estimate.error_bound_deg =
+            3.0 * std::sqrt(report.covariance.topLeftCorner<3, 3>().trace()) * 180.0 / M_PI;
+        estimate.error_bound_m =
+            3.0 * std::sqrt(report.covariance.bottomRightCorner<3, 3>().trace());
         Gene gene;
         codec_.encode(T, gene);
         ga_.insert(gene, fitness_.evaluate(codec_.decode(gene)));
@@ -118,6 +126,19 @@ PoseEstimate PoseEstimator::estimate() {
     }
   }
   estimate.recognised = estimate.fitness >= params_.recognition_threshold;
+  MarkerFitness::SphereScores& scores = estimate.sphere_scores;
+  fitness_.sphere_scores(estimate.T_cl_marker, scores);
+  const int spheres = static_cast<int>(fitness_.sphere_count());
+  for (int v = 0; v < 2; ++v) {
+    for (int s = 0; s < spheres && s < 3; ++s) {
+      if (scores[v][s] >= params_.sphere_support) ++estimate.spheres_seen[v];
+    }
+  }
+  // Improved mode also asks the blobs: every sphere found whole in both views and one rigid
+  // marker through their centroids (the refinement accepted).
+  estimate.ok = estimate.recognised && estimate.spheres_seen[0] == spheres &&
+                estimate.spheres_seen[1] == spheres &&
+                (!improved || !params_.refine_elite || estimate.refined);
   estimate.compute_time = Clock::now() - start;
   return estimate;
 }

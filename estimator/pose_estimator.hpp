@@ -4,8 +4,10 @@
 #pragma once
 
 #include <Eigen/Geometry>
+#include <array>
 #include <chrono>
 #include <cstdint>
+#include <limits>
 #include <opencv2/core/mat.hpp>
 
 #include "estimator/blob_seeder.hpp"
@@ -27,7 +29,20 @@ struct PoseEstimate {
   const char* input_error = nullptr;
   Eigen::Isometry3d T_cl_marker = Eigen::Isometry3d::Identity();
   double fitness = 0.0;  // best individual's fitness in [0, 1]
-  int generations = 0;   // generations run this frame
+  // How sure: the spheres each view supports at this pose (score(v, s) >= the support
+  // threshold), and ok only when every sphere is supported in both views. A partial view
+  // (recognised, not ok) is good enough to approach on, never to dock on.
+  std::array<int, 2> spheres_seen{0, 0};
+  std::array<std::array<double, 3>, 2> sphere_scores{};  // score(v, s) at this pose
+  // Improved mode: the pose was refined on the blobs' centroids (all spheres' blobs agree with one
+  // rigid marker within the refiner's residual gate), with a 3-sigma error bound from that fit.
+  // NaN bounds when not refined (faithful mode: the fitness alone, no bound).
+  bool refined = false;
+  double refine_rms_px = std::numeric_limits<double>::quiet_NaN();
+  double error_bound_m = std::numeric_limits<double>::quiet_NaN();
+  double error_bound_deg = std::numeric_limits<double>::quiet_NaN();
+  bool ok = false;
+  int generations = 0;  // generations run this frame
   std::chrono::nanoseconds compute_time{0};
 };
 

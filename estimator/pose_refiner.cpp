@@ -61,8 +61,8 @@ bool PoseRefiner::residuals(const BlobSet& blobs, const Eigen::Isometry3d& T, Re
   return r.allFinite();
 }
 
-bool PoseRefiner::refine(const BlobSet& blobs, Eigen::Isometry3d& T_cl_marker,
-                         double max_rms_px) const {
+bool PoseRefiner::refine(const BlobSet& blobs, Eigen::Isometry3d& T_cl_marker, double max_rms_px,
+                         RefineReport* report) const {
   int used = 0;
   const int n = static_cast<int>(std::min<std::size_t>(marker_.spheres.size(), 3));
   for (int view = 0; view < 2; ++view) {
@@ -84,9 +84,8 @@ bool PoseRefiner::refine(const BlobSet& blobs, Eigen::Isometry3d& T_cl_marker,
   Eigen::Isometry3d T = T_cl_marker;
   Residuals r0;
   if (!residuals(blobs, T, r0)) return false;
-  double lambda = 1e-3;
-  for (int iter = 0; iter < 15; ++iter) {
-    Eigen::Matrix<double, kMaxResiduals, 6> J;
+  Eigen::Matrix<double, kMaxResiduals, 6> J;
+  auto jacobian = [&]() {
     constexpr double h = 1e-6;
     for (int k = 0; k < 6; ++k) {
       Eigen::Matrix<double, 6, 1> d = Eigen::Matrix<double, 6, 1>::Zero();
@@ -95,6 +94,11 @@ bool PoseRefiner::refine(const BlobSet& blobs, Eigen::Isometry3d& T_cl_marker,
       if (!residuals(blobs, perturbed(T, d), rk)) return false;
       J.col(k) = (rk - r0) / h;
     }
+    return true;
+  };
+  double lambda = 1e-3;
+  for (int iter = 0; iter < 15; ++iter) {
+    if (!jacobian()) return false;
     Eigen::Matrix<double, 6, 6> A = J.transpose() * J;
     const Eigen::Matrix<double, 6, 1> g = J.transpose() * r0;
     A.diagonal() *= 1.0 + lambda;
@@ -114,6 +118,17 @@ bool PoseRefiner::refine(const BlobSet& blobs, Eigen::Isometry3d& T_cl_marker,
     }
   }
   const double rms = std::sqrt(r0.squaredNorm() / used);  // per (u, v) pair
+  if (report != nullptr) {
+    report->centroids = used;
+    report->rms_px = rms;
+    // Per coordinate: rms / sqrt(2); never below the centroids' own noise (a quarter pixel).
+    const double sigma_px = std::max(rms / std::sqrt(2.0), kCentroidNoisePx);
+    if (jacobian()) {
+      const Eigen::Matrix<double, 6, 6> A = J.transpose() * J;
+      report->covariance =
+          sigma_px * sigma_px * A.ldlt().solve(Eigen::Matrix<double, 6, 6>::Identity());
+    }
+  }
   if (!(rms <= max_rms_px)) return false;
   T_cl_marker = T;
   return true;

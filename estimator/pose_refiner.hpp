@@ -11,13 +11,23 @@
 
 namespace rovctl::estimator {
 
+// How well a refined pose fits: the residual and the pose's covariance for that residual.
+struct RefineReport {
+  int centroids = 0;    // whole blobs used (of 6)
+  double rms_px = 0.0;  // per centroid (u, v)
+  // Covariance of the pose's error, rotation vector (rad) then translation (m), from the
+  // Gauss-Newton normal equations with the residual's own scale (at least the centroids' noise).
+  Eigen::Matrix<double, 6, 6> covariance = Eigen::Matrix<double, 6, 6>::Zero();
+};
+
 class PoseRefiner {
  public:
   PoseRefiner(const hal::StereoRig& rig, const hal::MarkerModel& marker);
 
   // Refines T_cl_marker in place. False (pose unchanged) when fewer than four whole blobs are
   // seen or the fit leaves more than max_rms_px of residual.
-  bool refine(const BlobSet& blobs, Eigen::Isometry3d& T_cl_marker, double max_rms_px = 1.5) const;
+  bool refine(const BlobSet& blobs, Eigen::Isometry3d& T_cl_marker, double max_rms_px = 1.5,
+              RefineReport* report = nullptr) const;
 
   // Centroid of the sphere's silhouette in distorted pixels; false behind the camera.
   static bool silhouette_centroid(const hal::CameraModel& camera, const Eigen::Vector3d& centre_m,
@@ -25,6 +35,7 @@ class PoseRefiner {
 
  private:
   static constexpr int kMaxResiduals = 12;  // 2 views x 3 spheres x (u, v)
+  static constexpr double kCentroidNoisePx = 0.25;
   using Residuals = Eigen::Matrix<double, kMaxResiduals, 1>;
   bool residuals(const BlobSet& blobs, const Eigen::Isometry3d& T, Residuals& r) const;
 

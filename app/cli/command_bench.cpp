@@ -17,6 +17,7 @@
 #include "app/runtime/errors.hpp"
 #include "app/runtime/vehicle_backends.hpp"
 #include "app/tools/json_writer.hpp"
+#include "app/tools/validation_set.hpp"
 #include "estimator/pose_estimator.hpp"
 #include "hal/mock/scene_renderer.hpp"
 #include "hal/model/pose.hpp"
@@ -172,15 +173,93 @@ void print_figures(const ModeFigures& m, const std::string& mode, int cap) {
               m.r_err_deg_median);
 }
 
+// `rovctl bench --set DIR`: the estimator scored on an independent validation set, per condition.
+int bench_set(const AppConfig& config, const hal::StereoRig& rig, const std::string& dir,
+              int frames, bool json_out, bool verbose) {
+  std::vector<ValidationPair> pairs;
+  try {
+    pairs = load_validation_set(dir);
+  } catch (const std::invalid_argument& e) {
+    throw ConfigError(e.what());
+  }
+  std::vector<PairResult> details;
+  const std::vector<ConditionScore> scores =
+      score_validation_set(rig, config.marker, config.estimator, pairs, frames, &details);
+  if (verbose) {
+    for (const PairResult& r : details) {
+      std::fprintf(stderr,
+                   "%-44s %s %7.1f mm %6.1f deg  fitness %.3f  seen %d/%d  scores L %.2f %.2f "
+                   "%.2f R %.2f %.2f %.2f\n",
+                   r.pair->left_png.c_str(), r.ok ? "ok     " : (r.partial ? "partial" : "none   "),
+                   r.translation_mm, r.rotation_deg, r.fitness, r.spheres_seen_left,
+                   r.spheres_seen_right, r.sphere_scores[0][0], r.sphere_scores[0][1],
+                   r.sphere_scores[0][2], r.sphere_scores[1][0], r.sphere_scores[1][1],
+                   r.sphere_scores[1][2]);
+    }
+  }
+  if (json_out) {
+    JsonWriter json;
+    json.begin_object()
+        .field("set", dir)
+        .field("mode", config.estimator.mode)
+        .field("frames", frames)
+        .field("right_translation_mm", kRightTranslationMm)
+        .field("right_rotation_deg", kRightRotationDeg)
+        .begin_array("conditions");
+    for (const ConditionScore& s : scores) {
+      json.begin_object()
+          .field("condition", s.condition)
+          .field("pairs", s.pairs)
+          .field("ok", s.ok)
+          .field("success", s.success)
+          .field("success_rate", s.pairs > 0 ? static_cast<double>(s.success) / s.pairs : 0.0)
+          .field("false_ok", s.false_ok)
+          .field("false_ok_rate", s.pairs > 0 ? static_cast<double>(s.false_ok) / s.pairs : 0.0)
+          .field("partial", s.partial)
+          .field("translation_mm_median", s.translation_mm_median)
+          .field("translation_mm_p95", s.translation_mm_p95)
+          .field("rotation_deg_median", s.rotation_deg_median)
+          .field("rotation_deg_p95", s.rotation_deg_p95)
+          .field("translation_mm_median_all", s.translation_mm_median_all)
+          .field("ms_per_frame_p95", s.ms_per_frame_p95)
+          .end_object();
+    }
+    json.end_array().end_object();
+    std::cout << json.str() << "\n";
+  } else {
+    std::printf(
+        "rovctl bench --set %s: %zu pairs, %d frames each, %s mode; right = within %.0f mm "
+        "and %.0f deg\n",
+        dir.c_str(), pairs.size(), frames, config.estimator.mode.c_str(), kRightTranslationMm,
+        kRightRotationDeg);
+    std::printf("%-14s %5s %8s %9s %8s %10s %10s %9s\n", "condition", "pairs", "success",
+                "false-ok", "partial", "mm med/p95", "deg med/p95", "ms p95");
+    for (const ConditionScore& s : scores) {
+      std::printf("%-14s %5d %7.0f%% %8.0f%% %8d %5.1f/%-5.1f %5.2f/%-5.2f %8.2f\n",
+                  s.condition.c_str(), s.pairs, 100.0 * s.success / std::max(1, s.pairs),
+                  100.0 * s.false_ok / std::max(1, s.pairs), s.partial, s.translation_mm_median,
+                  s.translation_mm_p95, s.rotation_deg_median, s.rotation_deg_p95,
+                  s.ms_per_frame_p95);
+    }
+  }
+  return kExitOk;
+}
+
 }  // namespace
 
 int command_bench(const Words& words) {
   const CliArgs args =
-      CliArgs::parse("bench", words, {"--config", "--pairs", "--frame-cap"}, {"--json"});
+      CliArgs::parse("bench", words, {"--config", "--pairs", "--frame-cap", "--set", "--frames"},
+                     {"--json", "--verbose"});
   const std::string config_file =
       args.has("--config") ? args.get("--config") : default_config_path();
   const AppConfig config = load_app_config(config_file);
   const hal::StereoRig rig = load_rig(config);
+  if (args.has("--set")) {
+    return bench_set(config, rig, args.get("--set"),
+                     static_cast<int>(args.get_int("--frames", 10, 1, 10000)), args.has("--json"),
+                     args.has("--verbose"));
+  }
   const int n_pairs = static_cast<int>(args.get_int("--pairs", 100, 3, 100000));
   const int cap = static_cast<int>(args.get_int("--frame-cap", 100, 1, 100000));
 

@@ -76,7 +76,12 @@ int command_estimate(const Words& words) {
   if (args.has("--json")) {
     JsonWriter json;
     json.begin_object()
-        .field("ok", estimate.recognised)
+        .field("ok", estimate.ok)
+        .field("recognised", estimate.recognised)
+        .begin_array("spheres_seen")
+        .value(static_cast<double>(estimate.spheres_seen[0]))
+        .value(static_cast<double>(estimate.spheres_seen[1]))
+        .end_array()
         .begin_array("t_cl_marker_m")
         .value(t.x())
         .value(t.y())
@@ -89,6 +94,9 @@ int command_estimate(const Words& words) {
         .value(q.z())
         .end_array()
         .field("fitness", estimate.fitness)
+        .field("error_bound_mm", estimate.error_bound_m * 1000.0)
+        .field("error_bound_deg", estimate.error_bound_deg)
+        .field("refine_rms_px", estimate.refine_rms_px)
         .field("generations", generations)
         .field("time_ms", time_ms)
         .end_object();
@@ -101,14 +109,22 @@ int command_estimate(const Words& words) {
                   q.y(), q.z());
     std::cout << line;
     std::snprintf(line, sizeof line,
-                  "fitness %.3f (%s), %ld frames, %ld generations, %.2f ms estimator time\n",
-                  estimate.fitness, estimate.recognised ? "recognised" : "NOT recognised", frames,
-                  generations, time_ms);
+                  "fitness %.3f (%s), spheres seen %d left %d right, %ld frames, %ld generations, "
+                  "%.2f ms estimator time\n",
+                  estimate.fitness,
+                  estimate.ok ? "ok" : (estimate.recognised ? "PARTIAL view" : "NOT recognised"),
+                  estimate.spheres_seen[0], estimate.spheres_seen[1], frames, generations, time_ms);
     std::cout << line;
   }
   if (!estimate.recognised) {
     std::cerr << "rovctl estimate: marker not recognised (best fitness " << estimate.fitness
               << " < " << config.estimator.recognition_threshold << ")\n";
+    return kExitRuntimeFailure;
+  }
+  if (!estimate.ok) {
+    // A partial view: good enough to steer toward, not to trust as the pose.
+    std::cerr << "rovctl estimate: partial view (spheres seen: " << estimate.spheres_seen[0]
+              << " left, " << estimate.spheres_seen[1] << " right): not ok\n";
     return kExitRuntimeFailure;
   }
   return kExitOk;

@@ -40,6 +40,7 @@ constexpr std::uint32_t capture_failed = 1u << 5;
 constexpr std::uint32_t armed = 1u << 6;
 constexpr std::uint32_t failsafe = 1u << 7;
 constexpr std::uint32_t dock_errors_valid = 1u << 8;  // dock_* hold the mission's axis errors
+constexpr std::uint32_t full_view = 1u << 9;  // the estimate is ok: every sphere in both views
 }  // namespace telemetry_flag
 
 // One tick. Poses are T_cl_marker (marker in the left camera frame): translation in m, unit
@@ -59,6 +60,8 @@ struct TelemetryRecord {
   std::int32_t mission_state = 0;  // control's mission state id
   std::int32_t generations = 0;    // RM-GA generations this tick
   double fitness = kNaN;
+  std::int32_t spheres_seen_left = 0, spheres_seen_right = 0;
+  double error_bound_m = kNaN;  // 3-sigma translation bound of the estimate, when refined
   std::array<double, 3> est_t_m{kNaN, kNaN, kNaN};
   std::array<double, 4> est_q_wxyz{kNaN, kNaN, kNaN, kNaN};
   std::array<double, 3> truth_t_m{kNaN, kNaN, kNaN};

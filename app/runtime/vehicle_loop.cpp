@@ -130,6 +130,7 @@ bool VehicleLoop::tick(const TickInfo& info) {
     control::MissionInput in;
     in.now = now;
     in.recognised = seen;
+    in.full_view = seen && estimate_.ok;
     in.fitness = estimate_.fitness;
     in.T_cl_marker = estimate_.T_cl_marker;
     in.contact = contact;
@@ -211,6 +212,10 @@ bool VehicleLoop::tick(const TickInfo& info) {
       rec.generations = estimate_.generations;
       if (have_images) {
         rec.fitness = estimate_.fitness;
+        rec.spheres_seen_left = estimate_.spheres_seen[0];
+        rec.spheres_seen_right = estimate_.spheres_seen[1];
+        rec.error_bound_m = estimate_.error_bound_m;
+        if (estimate_.ok) flags |= telemetry_flag::full_view;
         put_pose(estimate_.T_cl_marker, rec.est_t_m, rec.est_q_wxyz);
         flags |= telemetry_flag::estimate_valid;
       }

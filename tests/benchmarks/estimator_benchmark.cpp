@@ -40,7 +40,7 @@ BENCHMARK(BM_RenderView)->Unit(benchmark::kMillisecond);
 
 void BM_Segment(benchmark::State& state) {
   Scene& s = scene();
-  const estimator::HueSegmenter seg(s.marker);
+  estimator::HueSegmenter seg(s.marker);
   cv::Mat labels;
   for (auto _ : state) seg.segment(s.l, labels);
 }

@@ -113,6 +113,7 @@ TrialResult run_trial(std::uint64_t seed, double current_mps) {
     MissionInput in;
     in.now = now;
     in.recognised = in_view;
+    in.full_view = in_view;
     in.fitness = in_view ? 0.9 : 0.1;
     in.T_cl_marker = T_cl_marker;
     in.contact = contact;

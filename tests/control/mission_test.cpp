@@ -34,11 +34,12 @@ class MissionTest : public ::testing::Test {
     return T_body_cl.inverse() * T * T_body_cl * docked;
   }
   MissionOutput tick(Mission& m, bool recognised, const Eigen::Isometry3d& T, bool contact = false,
-                     double fitness = 0.9) {
+                     double fitness = 0.9, bool full_view = true) {
     now += 33ms;
     MissionInput in;
     in.now = now;
     in.recognised = recognised;
+    in.full_view = recognised && full_view;
     in.fitness = fitness;
     in.T_cl_marker = T;
     in.contact = contact;
@@ -121,6 +122,35 @@ TEST_F(MissionTest, NominalSequenceToDocked) {
                                              "align>dock:aligned", "dock>docked:contact"};
   EXPECT_EQ(drain(m), expected);
   EXPECT_EQ(m.aborts(), 0);
+}
+
+// A partial view (a sphere hidden or out of one image) is enough to approach on, never to dock on.
+TEST_F(MissionTest, ApproachesOnAPartialViewButNeverDocksOnOne) {
+  Mission m = make();
+  MissionOutput out;
+  for (int k = 0; k < params.acquire_frames; ++k) {
+    out = tick(m, true, seen_at({2.0, 0.2, 0.1}), false, 0.9, false);
+  }
+  EXPECT_EQ(out.state, MissionState::approach);
+  EXPECT_TRUE(out.servo_active);
+  out = tick(m, true, seen_at({params.standoff_m, 0, 0}), false, 0.9, false);
+  EXPECT_EQ(out.state, MissionState::align);
+  for (int k = 0; k < 3 * params.align_hold_frames; ++k) {
+    out = tick(m, true, seen_at({params.standoff_m, 0, 0}), false, 0.9, false);
+  }
+  EXPECT_EQ(out.state, MissionState::align) << "aligned on a partial view only";
+  for (int k = 0; k < params.align_hold_frames; ++k)
+    tick(m, true, seen_at({params.standoff_m, 0, 0}));
+  ASSERT_EQ(m.state(), MissionState::dock);
+  // Docking, still short of the blind zone: a partial view holds the servo and then aborts.
+  out = tick(m, true, seen_at({params.standoff_m - 0.02, 0, 0}), false, 0.9, false);
+  EXPECT_FALSE(out.servo_active);
+  for (int k = 0; k < params.lost_frames && m.state() == MissionState::dock; ++k) {
+    out = tick(m, true, seen_at({params.standoff_m - 0.02, 0, 0}), false, 0.9, false);
+  }
+  EXPECT_EQ(m.state(), MissionState::abort);
+  const std::vector<std::string> events = drain(m);
+  EXPECT_EQ(events.back(), "dock>abort:partial view while docking");
 }
 
 TEST_F(MissionTest, MarkerLostMidApproachAbortsBacksOffAndSearchesAgain) {

@@ -101,6 +101,7 @@ TEST(Realtime, TickCallsDoNotAllocate) {
     MissionInput in;
     in.now = now;
     in.recognised = (k / 50) % 4 != 3;  // drop-outs drive the mission through its states
+    in.full_view = in.recognised;
     in.fitness = 0.8;
     in.T_cl_marker = offset_along_docking_axis(docked, 1.0 - 0.0005 * k);
     const MissionOutput out = mission.update(in);

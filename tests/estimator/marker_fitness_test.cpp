@@ -85,7 +85,7 @@ TEST(MarkerFitness, HonoursLensDistortion) {
   const Eigen::Isometry3d T = hal::make_pose({0.23, 0.17, 0.45}, Eigen::Quaterniond::Identity());
   cv::Mat lb, rb, l, r;
   hal::mock::render_stereo(left, right, rig, T, 1, lb, rb);
-  const HueSegmenter seg(marker);
+  HueSegmenter seg(marker);
   seg.segment(lb, l);
   seg.segment(rb, r);
   MarkerFitness distorted(rig, marker, FitnessParams{});

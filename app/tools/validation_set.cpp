@@ -1,0 +1,158 @@
+// Loading a validation set's manifest (JSON, read with yaml-cpp: JSON is YAML) and scoring the
+// estimator on it the way a vehicle would use it: what it said was ok, and whether it was right.
+#include "app/tools/validation_set.hpp"
+
+#include <yaml-cpp/yaml.h>
+
+#include <cmath>
+#include <filesystem>
+#include <opencv2/imgcodecs.hpp>
+#include <stdexcept>
+
+#include "estimator/pose_estimator.hpp"
+#include "hal/primitives/percentile.hpp"
+
+namespace rovctl::app {
+namespace {
+
+namespace fs = std::filesystem;
+
+[[noreturn]] void fail(const std::string& file, std::size_t index, const std::string& what) {
+  throw std::invalid_argument(file + ": pairs[" + std::to_string(index) + "]: " + what);
+}
+
+std::map<std::string, double> visible(const YAML::Node& node) {
+  std::map<std::string, double> out;
+  if (!node || !node.IsMap()) return out;
+  for (const auto& kv : node) out[kv.first.as<std::string>()] = kv.second.as<double>();
+  return out;
+}
+
+double angle_deg(const Eigen::Matrix3d& a, const Eigen::Matrix3d& b) {
+  return Eigen::AngleAxisd(a.transpose() * b).angle() * 180.0 / M_PI;
+}
+
+cv::Mat read_png(const std::string& path) {
+  cv::Mat image = cv::imread(path, cv::IMREAD_COLOR);
+  if (image.empty()) throw std::invalid_argument(path + ": cannot read image");
+  return image;
+}
+
+ConditionScore summarise(const std::string& condition, const std::vector<PairResult>& results,
+                         const std::vector<double>& ms) {
+  ConditionScore s;
+  s.condition = condition;
+  std::vector<double> t_ok, r_ok, t_all;
+  for (const PairResult& r : results) {
+    ++s.pairs;
+    t_all.push_back(r.translation_mm);
+    if (r.partial) ++s.partial;
+    if (!r.ok) continue;
+    ++s.ok;
+    t_ok.push_back(r.translation_mm);
+    r_ok.push_back(r.rotation_deg);
+    const bool right = r.translation_mm < kRightTranslationMm && r.rotation_deg < kRightRotationDeg;
+    if (right) {
+      ++s.success;
+    } else {
+      ++s.false_ok;
+    }
+  }
+  s.translation_mm_median = hal::percentile(t_ok, 0.5);
+  s.translation_mm_p95 = hal::percentile(t_ok, 0.95);
+  s.rotation_deg_median = hal::percentile(r_ok, 0.5);
+  s.rotation_deg_p95 = hal::percentile(r_ok, 0.95);
+  s.translation_mm_median_all = hal::percentile(t_all, 0.5);
+  s.ms_per_frame_p95 = hal::percentile(ms, 0.95);
+  return s;
+}
+
+}  // namespace
+
+std::vector<ValidationPair> load_validation_set(const std::string& dir) {
+  const std::string file = (fs::path(dir) / "manifest.json").string();
+  if (!fs::is_regular_file(file)) throw std::invalid_argument(file + ": no such file");
+  YAML::Node root;
+  try {
+    root = YAML::LoadFile(file);
+  } catch (const YAML::Exception& e) {
+    throw std::invalid_argument(file + ":" + std::to_string(e.mark.line + 1) + ": " + e.msg);
+  }
+  const YAML::Node list = root["pairs"];
+  if (!list || !list.IsSequence() || list.size() == 0) {
+    throw std::invalid_argument(file + ": 'pairs' must be a non-empty list");
+  }
+  std::vector<ValidationPair> pairs;
+  for (std::size_t i = 0; i < list.size(); ++i) {
+    const YAML::Node p = list[i];
+    try {
+      ValidationPair v;
+      v.condition = p["condition"].as<std::string>();
+      v.left_png = (fs::path(dir) / p["left"].as<std::string>()).string();
+      v.right_png = (fs::path(dir) / p["right"].as<std::string>()).string();
+      const auto t = p["t_cl_marker_m"].as<std::vector<double>>();
+      const auto q = p["q_cl_marker_wxyz"].as<std::vector<double>>();
+      if (t.size() != 3 || q.size() != 4) fail(file, i, "t_cl_marker_m needs 3 and q 4 numbers");
+      const Eigen::Quaterniond rotation(q[0], q[1], q[2], q[3]);
+      if (std::abs(rotation.norm() - 1.0) > 1e-3) fail(file, i, "q_cl_marker_wxyz is not unit");
+      v.T_cl_marker.linear() = rotation.normalized().toRotationMatrix();
+      v.T_cl_marker.translation() = Eigen::Vector3d(t[0], t[1], t[2]);
+      v.visible_left = visible(p["spheres_visible_left"]);
+      v.visible_right = visible(p["spheres_visible_right"]);
+      pairs.push_back(std::move(v));
+    } catch (const YAML::Exception& e) {
+      fail(file, i, std::string("missing or malformed field (") + e.msg + ")");
+    }
+  }
+  return pairs;
+}
+
+std::vector<ConditionScore> score_validation_set(const hal::StereoRig& rig,
+                                                 const hal::MarkerModel& marker,
+                                                 const estimator::EstimatorParams& params,
+                                                 const std::vector<ValidationPair>& pairs,
+                                                 int frames, std::vector<PairResult>* details) {
+  std::vector<std::string> order;
+  std::map<std::string, std::vector<PairResult>> by_condition;
+  std::map<std::string, std::vector<double>> ms_by_condition;
+  std::vector<PairResult> all;
+  std::vector<double> all_ms;
+  for (std::size_t i = 0; i < pairs.size(); ++i) {
+    const ValidationPair& pair = pairs[i];
+    const cv::Mat left = read_png(pair.left_png);
+    const cv::Mat right = read_png(pair.right_png);
+    estimator::PoseEstimator estimator(rig, marker, params, 1 + i);
+    estimator::PoseEstimate e;
+    for (int f = 0; f < frames; ++f) {
+      e = estimator.update(left, right);
+      if (e.input_error != nullptr) {
+        throw std::invalid_argument(pair.left_png + ": " + e.input_error);
+      }
+      const double ms = std::chrono::duration<double, std::milli>(e.compute_time).count();
+      ms_by_condition[pair.condition].push_back(ms);
+      all_ms.push_back(ms);
+    }
+    PairResult r;
+    r.pair = &pair;
+    r.ok = e.ok;
+    r.partial = !e.ok && e.recognised;
+    r.fitness = e.fitness;
+    r.spheres_seen_left = e.spheres_seen[0];
+    r.spheres_seen_right = e.spheres_seen[1];
+    r.sphere_scores = e.sphere_scores;
+    r.translation_mm =
+        (e.T_cl_marker.translation() - pair.T_cl_marker.translation()).norm() * 1000.0;
+    r.rotation_deg = angle_deg(e.T_cl_marker.linear(), pair.T_cl_marker.linear());
+    if (by_condition.find(pair.condition) == by_condition.end()) order.push_back(pair.condition);
+    by_condition[pair.condition].push_back(r);
+    all.push_back(r);
+    if (details != nullptr) details->push_back(r);
+  }
+  std::vector<ConditionScore> scores;
+  for (const std::string& c : order)
+    scores.push_back(summarise(c, by_condition[c], ms_by_condition[c]));
+  scores.push_back(summarise("all", all, all_ms));
+  return scores;
+}
+
+}  // namespace rovctl::app

@@ -1,0 +1,66 @@
+// An independent validation set (stereo pairs rendered outside rovctl, with ground truth and a
+// condition per pair: clear, turbid, side light, ...) and the estimator's score on it, per
+// condition. The set's format is tests/estimator/water_set/README.md's manifest.json.
+#pragma once
+
+#include <Eigen/Geometry>
+#include <array>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "estimator/estimator_params.hpp"
+#include "hal/model/marker_model.hpp"
+#include "hal/model/stereo_rig.hpp"
+
+namespace rovctl::app {
+
+struct ValidationPair {
+  std::string condition;
+  std::string left_png, right_png;  // full paths
+  Eigen::Isometry3d T_cl_marker = Eigen::Isometry3d::Identity();
+  // Visible fraction of each sphere per view, as the generator estimated it (1 = whole).
+  std::map<std::string, double> visible_left, visible_right;
+};
+
+// Reads DIR/manifest.json. Throws std::invalid_argument naming the file and the entry.
+std::vector<ValidationPair> load_validation_set(const std::string& dir);
+
+// Right means within these of the truth (the bounds).
+constexpr double kRightTranslationMm = 10.0;
+constexpr double kRightRotationDeg = 5.0;
+
+struct ConditionScore {
+  std::string condition;
+  int pairs = 0;
+  int ok = 0;        // the estimator said ok
+  int success = 0;   // said ok and was right
+  int false_ok = 0;  // said ok and was wrong: the failure that matters
+  int partial = 0;   // reported a partial view (approach only), not ok
+  // Over the pairs reported ok (what the vehicle would act on); NaN when none.
+  double translation_mm_median = 0.0, translation_mm_p95 = 0.0;
+  double rotation_deg_median = 0.0, rotation_deg_p95 = 0.0;
+  // Over every pair, ok or not: how far off the best pose was.
+  double translation_mm_median_all = 0.0;
+  double ms_per_frame_p95 = 0.0;
+};
+
+struct PairResult {
+  const ValidationPair* pair = nullptr;
+  bool ok = false;
+  bool partial = false;
+  double translation_mm = 0.0, rotation_deg = 0.0;
+  double fitness = 0.0;
+  int spheres_seen_left = 0, spheres_seen_right = 0;
+  std::array<std::array<double, 3>, 2> sphere_scores{};
+};
+
+// Runs a fresh estimator over each pair for `frames` frames (a still camera) and scores the last
+// estimate. `by_condition` gets one row per condition in the set's order, then "all".
+std::vector<ConditionScore> score_validation_set(const hal::StereoRig& rig,
+                                                 const hal::MarkerModel& marker,
+                                                 const estimator::EstimatorParams& params,
+                                                 const std::vector<ValidationPair>& pairs,
+                                                 int frames, std::vector<PairResult>* details);
+
+}  // namespace rovctl::app
