@@ -121,13 +121,26 @@ class YamlLoader final : public hal::ParamVisitor {
     }
   }
 
-  // Every key present must have been declared.
+  // Every key present must have been declared, and given once: YAML parsers keep the first of
+  // two equal keys and drop the second without a word, so an edited value could silently lose.
   void finish() const {
     if (!node_ || !node_.IsMap()) return;
+    std::set<std::string> present;
     for (const auto& kv : node_) {
       const std::string key = kv.first.as<std::string>();
+      if (!present.insert(key).second) {
+        fail(kv.first, key,
+             "given twice (the first is line " + std::to_string(first_line(key)) + ")");
+      }
       if (seen_.count(key) == 0) fail(kv.first, key, "unknown key");
     }
+  }
+
+  int first_line(const std::string& key) const {
+    for (const auto& kv : node_) {
+      if (kv.first.as<std::string>() == key) return kv.first.Mark().line + 1;
+    }
+    return line_;
   }
 
   int line_ = 0;

@@ -49,6 +49,16 @@ TEST(ConfigLoader, UnknownKeyNamesPathAndLine) {
             "test.yaml:3: marker.sphere: unknown key");
 }
 
+TEST(ConfigLoader, DuplicateKeysAndSectionsAreErrors) {
+  EXPECT_EQ(error_of("calibration: a.yaml\ncalibration: b.yaml\n"),
+            "test.yaml:2: calibration: given twice (the first is line 1)");
+  EXPECT_EQ(error_of("calibration: c.yaml\nestimator:\n  mode: faithful\n"
+                     "estimator:\n  mode: improved\n"),
+            "test.yaml:4: estimator: given twice (the first is line 2)");
+  EXPECT_EQ(error_of("calibration: c.yaml\nestimator:\n  mode: faithful\n  mode: improved\n"),
+            "test.yaml:4: estimator.mode: given twice (the first is line 3)");
+}
+
 TEST(ConfigLoader, MissingRequiredKey) {
   EXPECT_EQ(error_of("marker: {}\n"), "test.yaml:1: calibration: missing required key");
 }
