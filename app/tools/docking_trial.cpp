@@ -35,6 +35,11 @@ void score_against_truth(const Eigen::Isometry3d& truth, TelemetryRecord& r) {
 
 }  // namespace
 
+bool trial_docked(const TrialResult& r) {
+  return r.docked && r.mission_docked && r.lateral_error_mm <= kSuccessLateralMm &&
+         std::abs(r.yaw_error_deg) <= kSuccessYawDeg;
+}
+
 TrialResult run_docking_trial(const AppConfig& config, const hal::StereoRig& rig,
                               const hal::mock::TrialConditions& conditions,
                               const TrialOptions& options) {
@@ -98,8 +103,7 @@ TrialResult run_docking_trial(const AppConfig& config, const hal::StereoRig& rig
 
   result.docked = world.docking().docked;
   result.mission_docked = loop.mission().state() == control::MissionState::docked;
-  result.success = result.docked && result.lateral_error_mm <= kSuccessLateralMm &&
-                   std::abs(result.yaw_error_deg) <= kSuccessYawDeg;
+  result.success = trial_docked(result);
   result.sim_time_s = std::chrono::duration<double>(world.time()).count();
   result.final_state = control::to_string(loop.mission().state());
   result.aborts = loop.mission().aborts();

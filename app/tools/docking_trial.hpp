@@ -49,6 +49,11 @@ struct TrialResult {
 constexpr double kSuccessLateralMm = 10.0;
 constexpr double kSuccessYawDeg = 3.0;
 
+// Docked means all three: the simulator captured the probe, within the tolerances, and the
+// mission itself reached DOCKED (a vehicle that touched the socket but kept thrusting, or
+// thought it was elsewhere, did not dock).
+bool trial_docked(const TrialResult& r);
+
 // Runs trial `conditions` with `config` on the calibrated rig. Throws on bad config.
 TrialResult run_docking_trial(const AppConfig& config, const hal::StereoRig& rig,
                               const hal::mock::TrialConditions& conditions,

@@ -11,7 +11,7 @@ namespace rovctl::app {
 
 struct SimSummary {
   int trials = 0;
-  int docked = 0;    // successful: captured within the lateral/yaw tolerances
+  int docked = 0;    // trial_docked(): captured within tolerances and the mission said DOCKED
   int captured = 0;  // captured by the socket at all
   double success_rate = 0.0;
   double time_to_dock_s_median = -1.0;

@@ -1,0 +1,36 @@
+// The sim report's verdict: a trial is docked only when the simulator captured the probe within
+// the tolerances and the mission itself reached DOCKED.
+#include "app/tools/sim_report.hpp"
+
+#include <gtest/gtest.h>
+
+namespace rovctl::app {
+namespace {
+
+TrialResult captured_trial(bool mission_docked, double lateral_mm) {
+  TrialResult r;
+  r.docked = true;
+  r.mission_docked = mission_docked;
+  r.lateral_error_mm = lateral_mm;
+  r.yaw_error_deg = 0.5;
+  r.time_to_dock_s = 20.0;
+  r.success = trial_docked(r);
+  return r;
+}
+
+TEST(SimReport, ATrialIsDockedOnlyWhenTheMissionSaysSo) {
+  const std::vector<TrialResult> results = {captured_trial(true, 3.0), captured_trial(false, 3.0),
+                                            captured_trial(true, 25.0), TrialResult{}};
+  EXPECT_TRUE(results[0].success);
+  EXPECT_FALSE(results[1].success) << "touched the socket, but the mission never reached DOCKED";
+  EXPECT_FALSE(results[2].success) << "off the lateral tolerance";
+  EXPECT_FALSE(results[3].success);
+  const SimSummary s = summarise(results);
+  EXPECT_EQ(s.trials, 4);
+  EXPECT_EQ(s.captured, 3);
+  EXPECT_EQ(s.docked, 1);
+  EXPECT_DOUBLE_EQ(s.success_rate, 0.25);
+}
+
+}  // namespace
+}  // namespace rovctl::app
