@@ -1032,17 +1032,24 @@ def main(argv=None):
     jobs = [(c, i) for c in conds for i in range(args.pairs_per_condition)]
     start = time.time()
     entries = {}
+
+    def write_manifest():
+        # Rewritten after every pair, so a run that is stopped keeps what it finished.
+        manifest = {"calibration": os.path.basename(args.calibration), "generator": "render_water_set.py",
+                    "seed": args.seed, "pairs": [entries[k] for k in jobs if k in entries]}
+        tmp = os.path.join(args.out, "manifest.json.tmp")
+        with open(tmp, "w") as f:
+            json.dump(manifest, f, indent=1)
+            f.write("\n")
+        os.replace(tmp, os.path.join(args.out, "manifest.json"))
+
     with concurrent.futures.ThreadPoolExecutor(max_workers=max(1, args.jobs)) as pool:
         futs = {pool.submit(make_pair, rig, c, i, args.seed, args.out): (c, i) for c, i in jobs}
         for n, fut in enumerate(concurrent.futures.as_completed(futs), 1):
             c, i = futs[fut]
             entries[(c, i)] = fut.result()
+            write_manifest()
             print("[%d/%d] %s %03d  %.0f s" % (n, len(jobs), c, i, time.time() - start), flush=True)
-    manifest = {"calibration": os.path.basename(args.calibration), "generator": "render_water_set.py",
-                "seed": args.seed, "pairs": [entries[k] for k in jobs]}
-    with open(os.path.join(args.out, "manifest.json"), "w") as f:
-        json.dump(manifest, f, indent=1)
-        f.write("\n")
     took = time.time() - start
     print("rendered %d pairs in %.1f s (%.1f min) into %s" % (len(jobs), took, took / 60, args.out))
 
