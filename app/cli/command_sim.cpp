@@ -14,13 +14,15 @@
 #include "app/runtime/vehicle_backends.hpp"
 #include "app/tools/docking_trial.hpp"
 #include "app/tools/sim_report.hpp"
+#include "hal/mock/render_scenario.hpp"
 #include "hal/mock/trial_generator.hpp"
 
 namespace rovctl::app {
 
 int command_sim(const Words& words) {
   const CliArgs args = CliArgs::parse(
-      "sim", words, {"--config", "--trials", "--seed", "--out", "--jobs", "--max-time", "--plots"},
+      "sim", words,
+      {"--config", "--trials", "--seed", "--out", "--jobs", "--max-time", "--plots", "--scenario"},
       {"--realtime", "--json", "--verbose"});
   const std::string config_file =
       args.has("--config") ? args.get("--config") : default_config_path();
@@ -41,7 +43,17 @@ int command_sim(const Words& words) {
       realtime ? 1 : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   const int jobs = static_cast<int>(args.get_int("--jobs", default_jobs, 1, 64));
 
-  const AppConfig config = load_app_config(config_file);
+  AppConfig config = load_app_config(config_file);
+  if (args.has("--scenario")) {
+    // Overrides sim.scenario, checked here so that a typo is a usage error before any trial.
+    const std::string scenario = args.get("--scenario");
+    hal::mock::Scenario unused;
+    if (!hal::mock::scenario_from_name(scenario, unused)) {
+      throw UsageError("rovctl sim: --scenario must be one of " + hal::mock::scenario_names_text() +
+                       ", got '" + scenario + "'");
+    }
+    config.sim.scenario = scenario;
+  }
   const hal::StereoRig rig = load_rig(config);
   const hal::mock::TrialGenerator generator(config.sim, config.vehicle, rig, config.marker);
 

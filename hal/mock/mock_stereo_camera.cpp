@@ -5,13 +5,21 @@
 
 namespace rovctl::hal::mock {
 
+namespace {
+// Both views draw the same scene: one layout seed for the pair, apart from the noise's.
+SceneConditions world_scene(const SimulatedWorld& world, std::uint64_t noise_seed) {
+  const SimParams& p = world.params();
+  return scene_conditions(p.scenario, p.scenarios, noise_seed * 0x9E3779B97F4A7C15ull + 0x5CE4E);
+}
+}  // namespace
+
 MockStereoCamera::MockStereoCamera(const SimulatedWorld& world, const StereoRig& rig,
                                    const MarkerModel& marker, const CameraSimParams& params,
                                    const FaultInjection& faults, std::uint64_t noise_seed)
     : world_(world),
       rig_(rig),
-      left_(rig.left, marker, params.render),
-      right_(rig.right, marker, params.render),
+      left_(rig.left, marker, params.render, world_scene(world, noise_seed)),
+      right_(rig.right, marker, params.render, world_scene(world, noise_seed)),
       latency_(std::llround(params.latency_ms * 1e6)),
       faults_(faults),
       noise_seed_(noise_seed),
@@ -39,7 +47,8 @@ GrabStatus MockStereoCamera::grab(StereoFrame& frame) {
   last_truth_ = world_.T_cl_marker_at(capture);
   // A fresh noise pattern per frame, reproducible from the trial's seed.
   const std::uint64_t seed = noise_seed_ ^ (0x9E3779B97F4A7C15ull * (sequence_ + 1));
-  render_stereo(left_, right_, rig_, last_truth_, seed, frame.left_bgr, frame.right_bgr);
+  const double capture_s = std::chrono::duration<double>(capture).count();
+  render_stereo(left_, right_, rig_, last_truth_, seed, capture_s, frame.left_bgr, frame.right_bgr);
   frame.left_stamp = capture;
   frame.right_stamp = capture;
   frame.sequence = sequence_++;

@@ -1,6 +1,7 @@
 // MockStereoCamera: the StereoCamera of the simulation. Each grab renders both views of the
-// marker as the world stood `latency` ago (from the world's pose history), with image noise; the
-// images are all the estimator gets. Fault injection: camera lost from a time, dropped frames.
+// marker as the world stood `latency` ago (from the world's pose history), with image noise, in
+// the world's imaging scenario (sim.scenario) at that time; the images are all the estimator
+// gets. Fault injection: camera lost from a time, dropped frames.
 #pragma once
 
 #include <cstdint>
@@ -20,14 +21,17 @@ namespace rovctl::hal::mock {
 class MockStereoCamera final : public StereoCamera {
  public:
   // `rig` and `marker` are the true cameras and marker (usually those of the calibration and
-  // config); params.render.noise_sigma is the image noise (see params_for_trial()).
+  // config); params.render.noise_sigma is the image noise (see params_for_trial()). The scenario
+  // is the world's (world.params().scenario); its random layout follows from noise_seed. Throws
+  // std::invalid_argument for an unknown scenario.
   MockStereoCamera(const SimulatedWorld& world, const StereoRig& rig, const MarkerModel& marker,
                    const CameraSimParams& params, const FaultInjection& faults,
                    std::uint64_t noise_seed);
 
   bool open(std::string& error) override;
-  // Renders the pair seen at world time - latency, stamped with that capture time. No heap
-  // allocation once `frame`'s images have the camera size.
+  // Renders the pair seen at world time - latency, stamped with that capture time, with the
+  // scenario's moving parts as they stood then. No heap allocation once `frame`'s images have
+  // the camera size.
   GrabStatus grab(StereoFrame& frame) override;
   void close() override { open_ = false; }
   std::string name() const override { return "mock stereo camera"; }

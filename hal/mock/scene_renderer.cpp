@@ -1,5 +1,6 @@
 // Ray-cast renderer of the marker scene. The per-pixel rays, the background and a noise texture
-// are computed once, so a frame costs a copy, the spheres' bounding boxes and two saturating adds.
+// are computed once, so a clear frame costs a copy, the spheres' bounding boxes and two saturating
+// adds; a scenario adds its objects to one far-to-near draw list and its camera effects after.
 #include "hal/mock/scene_renderer.hpp"
 
 #include <algorithm>
@@ -8,12 +9,34 @@
 #include <opencv2/core.hpp>
 #include <stdexcept>
 
+#include "hal/mock/passing_bar.hpp"
 #include "hal/model/sphere_rim.hpp"
 
 namespace rovctl::hal::mock {
 namespace {
 
 constexpr int kNoiseMargin = 64;  // the noise texture is this much larger than the image
+constexpr int kMaxSpheres = 8;
+static_assert(kMaxSpheres <= kMaxShadowCasters, "every sphere casts a shadow in the side light");
+
+// Everything a frame draws, painted far to near so that nearer things cover farther ones.
+enum class ItemKind : std::uint8_t { sphere, bubble, particle, bar, strut };
+struct DrawItem {
+  double depth_m;
+  Eigen::Vector3d centre_cam_m;
+  double radius_m;
+  ItemKind kind;
+  int index;
+};
+constexpr int kMaxDrawItems = kMaxSpheres + kMaxBubbles + kMaxParticles + 2;
+
+// Farthest first; ties in a fixed order, so the spheres alone come out as the stable
+// farthest-first sort they always had.
+bool farther(const DrawItem& a, const DrawItem& b) {
+  if (a.depth_m != b.depth_m) return a.depth_m > b.depth_m;
+  if (a.kind != b.kind) return a.kind < b.kind;
+  return a.index < b.index;
+}
 
 std::uint64_t splitmix64(std::uint64_t x) {
   x += 0x9E3779B97F4A7C15ull;
@@ -61,9 +84,21 @@ void describe(ParamVisitor& v, RenderOptions& o) {
   v.param("highlights", o.highlights, "specular highlights on the spheres");
 }
 
+// The light a frame's surfaces see: the clear scene's lamp over the rig, or the side light; and
+// the water they are seen through, when turbid.
+struct SceneRenderer::FrameLighting {
+  bool side = false;
+  SideLighting side_light;
+  const WaterOptics* water = nullptr;
+};
+
 SceneRenderer::SceneRenderer(const CameraModel& camera, const MarkerModel& marker,
                              const RenderOptions& options)
-    : camera_(camera), marker_(marker), options_(options) {
+    : SceneRenderer(camera, marker, options, SceneConditions{}) {}
+
+SceneRenderer::SceneRenderer(const CameraModel& camera, const MarkerModel& marker,
+                             const RenderOptions& options, const SceneConditions& scene)
+    : camera_(camera), marker_(marker), options_(options), scene_(scene) {
   const int w = camera_.width_px, h = camera_.height_px;
   if (w <= 0 || h <= 0) throw std::invalid_argument("SceneRenderer: empty camera image size");
   rays_.resize(static_cast<std::size_t>(w) * h);
@@ -91,18 +126,48 @@ SceneRenderer::SceneRenderer(const CameraModel& camera, const MarkerModel& marke
     for (int u = 0; u < w; ++u) background_bgr_.at<cv::Vec3b>(v, u) = bgr;
   }
   water_rgb_ = 0.5 * (options_.background_top_rgb + options_.background_bottom_rgb);
-  if (options_.noise_sigma > 0.0) {
+  const ScenarioParams& sp = scene_.params;
+  // A camera at high gain: the same noise texture, scaled.
+  const double noise_sigma = scene_.scenario == Scenario::noisy
+                                 ? options_.noise_sigma * sp.noisy.noise_gain
+                                 : options_.noise_sigma;
+  if (noise_sigma > 0.0) {
     cv::Mat noise(h + kNoiseMargin, w + kNoiseMargin, CV_32FC3);
     cv::RNG rng(0x5EED);
-    rng.fill(noise, cv::RNG::NORMAL, 0.0, options_.noise_sigma);
+    rng.fill(noise, cv::RNG::NORMAL, 0.0, noise_sigma);
     noise.convertTo(noise_plus_, CV_8UC3);  // saturates negatives to 0
     cv::Mat negated = -noise;
     negated.convertTo(noise_minus_, CV_8UC3);
   }
+  switch (scene_.scenario) {
+    case Scenario::turbid:
+      turbid_.emplace(sp.turbid);
+      background_row_rgb_.resize(static_cast<std::size_t>(h));
+      for (int v = 0; v < h; ++v) {
+        const double a = h > 1 ? static_cast<double>(v) / (h - 1) : 0.0;
+        background_row_rgb_[static_cast<std::size_t>(v)] =
+            ((1.0 - a) * options_.background_top_rgb + a * options_.background_bottom_rgb)
+                .cast<float>();
+      }
+      break;
+    case Scenario::bubbles:
+      bubbles_.emplace(sp.bubbles, scene_.seed);
+      break;
+    case Scenario::noisy:
+      compression_.emplace(sp.noisy.jpeg_quality, sp.noisy.chroma_subsampling);
+      break;
+    case Scenario::exposure:
+      exposure_.emplace();
+      break;
+    case Scenario::clear:
+    case Scenario::side_light:
+    case Scenario::occluders:
+      break;
+  }
 }
 
 void SceneRenderer::shade_sphere(const MarkerSphere& sphere, const Eigen::Vector3d& centre_cam_m,
-                                 cv::Mat& out_bgr) const {
+                                 const FrameLighting& lighting, int self, cv::Mat& out_bgr) const {
   cv::Rect box;
   if (!silhouette_box(camera_, centre_cam_m, sphere.radius_m, box)) return;
   const Eigen::Vector3f c = centre_cam_m.cast<float>();
@@ -116,6 +181,7 @@ void SceneRenderer::shade_sphere(const MarkerSphere& sphere, const Eigen::Vector
   const float att = static_cast<float>(options_.water_attenuation_per_m);
   // Red is absorbed most, then green, then blue: the blue-green cast of water.
   const Eigen::Vector3f k_rgb(att, 0.3f * att, 0.2f * att);
+  const SideLighting& side = lighting.side_light;
   const int w = camera_.width_px;
   for (int v = box.y; v < box.y + box.height; ++v) {
     cv::Vec3b* row = out_bgr.ptr<cv::Vec3b>(v);
@@ -129,14 +195,28 @@ void SceneRenderer::shade_sphere(const MarkerSphere& sphere, const Eigen::Vector
       const float t = (b - std::sqrt(disc)) / a;
       const Eigen::Vector3f p = t * d;
       const Eigen::Vector3f n = (p - c) / r;
-      const float diffuse = std::max(0.0f, n.dot(light));
-      Eigen::Vector3f rgb = albedo * (ambient + (1.0f - ambient) * diffuse);
+      Eigen::Vector3f rgb;
       const float dist = p.norm();
-      if (options_.highlights) {
-        const Eigen::Vector3f half = (light - p / dist).normalized();
-        const float s = std::max(0.0f, n.dot(half));
-        const float s2 = s * s, s4 = s2 * s2, s8 = s4 * s4, s16 = s8 * s8, s32 = s16 * s16;
-        rgb.array() += 0.8f * s32 * s16;  // a tight white highlight (Blinn-Phong, exponent 48)
+      if (!lighting.side) {
+        const float diffuse = std::max(0.0f, n.dot(light));
+        rgb = albedo * (ambient + (1.0f - ambient) * diffuse);
+        if (options_.highlights) {
+          const Eigen::Vector3f half = (light - p / dist).normalized();
+          const float s = std::max(0.0f, n.dot(half));
+          const float s2 = s * s, s4 = s2 * s2, s8 = s4 * s4, s16 = s8 * s8, s32 = s16 * s16;
+          rgb.array() += 0.8f * s32 * s16;  // a tight white highlight (Blinn-Phong, exponent 48)
+        }
+      } else {
+        // Only the light that the strut and the other spheres let through reaches p.
+        const float diffuse = std::max(0.0f, n.dot(side.to_light));
+        const bool lit = diffuse > 0.0f && !side.shadowed(p, self);
+        rgb = albedo * (side.ambient + (lit ? side.intensity * diffuse : 0.0f));
+        if (options_.highlights && lit) {
+          const Eigen::Vector3f half = (side.to_light - p / dist).normalized();
+          const float s = std::max(0.0f, n.dot(half));
+          const float s2 = s * s, s4 = s2 * s2, s8 = s4 * s4, s16 = s8 * s8, s32 = s16 * s16;
+          rgb.array() += 0.8f * side.intensity * s32 * s16;
+        }
       }
       if (att > 0.0f) {
         for (int i = 0; i < 3; ++i) {
@@ -144,6 +224,7 @@ void SceneRenderer::shade_sphere(const MarkerSphere& sphere, const Eigen::Vector
           rgb[i] = rgb[i] * f + water[i] * (1.0f - f);
         }
       }
+      if (lighting.water != nullptr) rgb = lighting.water->through(rgb, dist);
       auto q = [this](float x) {
         const int i = static_cast<int>(x * 4095.0f + 0.5f);
         return to_srgb8_[static_cast<std::size_t>(std::clamp(i, 0, 4095))];
@@ -153,25 +234,122 @@ void SceneRenderer::shade_sphere(const MarkerSphere& sphere, const Eigen::Vector
   }
 }
 
-void SceneRenderer::render(const Eigen::Isometry3d& T_cam_marker, std::uint64_t noise_seed,
-                           cv::Mat& out_bgr) const {
-  out_bgr.create(camera_.height_px, camera_.width_px, CV_8UC3);
-  background_bgr_.copyTo(out_bgr);
-  // Far spheres first, so nearer ones cover them.
-  std::array<std::pair<double, int>, 8> order{};
-  const int n = static_cast<int>(std::min<std::size_t>(marker_.spheres.size(), order.size()));
-  for (int i = 0; i < n; ++i) {
-    order[i] = {(T_cam_marker * marker_.spheres[i].centre_marker_m).norm(), i};
-  }
-  for (int i = 1; i < n; ++i) {  // insertion sort, farthest first (n <= 3)
-    for (int j = i; j > 0 && order[j - 1].first < order[j].first; --j) {
-      std::swap(order[j - 1], order[j]);
+void SceneRenderer::shade_rod(const Rod& rod, const Eigen::Vector3f& albedo,
+                              const FrameLighting& lighting, cv::Mat& out_bgr) const {
+  const Eigen::Vector3f light = lighting.side ? lighting.side_light.to_light
+                                              : Eigen::Vector3f(0.35f, -0.8f, -0.5f).normalized();
+  const float ambient =
+      lighting.side ? lighting.side_light.ambient : static_cast<float>(options_.ambient);
+  const float direct = lighting.side ? lighting.side_light.intensity : 1.0f - ambient;
+  const int w = camera_.width_px, h = camera_.height_px;
+  auto q = [this](float x) {
+    const int i = static_cast<int>(x * 4095.0f + 0.5f);
+    return to_srgb8_[static_cast<std::size_t>(std::clamp(i, 0, 4095))];
+  };
+  // A long rod crosses the image anywhere, so tiles are culled first: a tile's rays lie within
+  // tile_angle of its centre ray (twice the pixel pitch, for lens distortion), so its distance
+  // from the rod's axis can shrink by at most tile_angle times the farthest reach of the rod.
+  constexpr int kTile = 8;
+  const float tile_angle =
+      2.0f * kTile * 0.7072f / static_cast<float>(std::min(camera_.fx_px, camera_.fy_px));
+  const float margin = rod.radius_m + tile_angle * (rod.centre_m.norm() + rod.half_length_m);
+  for (int v0 = 0; v0 < h; v0 += kTile) {
+    const int v1 = std::min(v0 + kTile, h);
+    for (int u0 = 0; u0 < w; u0 += kTile) {
+      const int u1 = std::min(u0 + kTile, w);
+      const Eigen::Vector3f d =
+          rays_[static_cast<std::size_t>((v0 + v1) / 2) * w + (u0 + u1) / 2].normalized();
+      const Eigen::Vector3f across = d.cross(rod.axis);
+      const float sine = across.norm();
+      if (sine > 1e-4f && std::abs(rod.centre_m.dot(across)) > margin * sine) continue;
+      for (int v = v0; v < v1; ++v) {
+        cv::Vec3b* row = out_bgr.ptr<cv::Vec3b>(v);
+        const Eigen::Vector3f* rays = rays_.data() + static_cast<std::size_t>(v) * w;
+        for (int u = u0; u < u1; ++u) {
+          float t = 0.0f;
+          Eigen::Vector3f n;
+          if (!intersect(rod, rays[u], t, n)) continue;
+          Eigen::Vector3f rgb = albedo * (ambient + direct * std::max(0.0f, n.dot(light)));
+          if (lighting.water != nullptr) rgb = lighting.water->through(rgb, t * rays[u].norm());
+          row[u] = cv::Vec3b(q(rgb.z()), q(rgb.y()), q(rgb.x()));
+        }
+      }
     }
   }
-  for (int k = 0; k < n; ++k) {
-    const MarkerSphere& s = marker_.spheres[order[k].second];
-    shade_sphere(s, T_cam_marker * s.centre_marker_m, out_bgr);
+}
+
+void SceneRenderer::render(const Eigen::Isometry3d& T_cam_marker, std::uint64_t noise_seed,
+                           double time_s, cv::Mat& out_bgr) const {
+  out_bgr.create(camera_.height_px, camera_.width_px, CV_8UC3);
+  FrameLighting lighting;
+  if (turbid_) {
+    lighting.water = &*turbid_;
+    turbid_->draw_background(T_cam_marker, rays_.data(), background_row_rgb_.data(),
+                             to_srgb8_.data(), out_bgr);
+  } else {
+    background_bgr_.copyTo(out_bgr);
   }
+  const ScenarioParams& sp = scene_.params;
+  std::array<DrawItem, kMaxDrawItems> items;
+  int n = 0;
+  const int spheres = static_cast<int>(std::min<std::size_t>(marker_.spheres.size(), kMaxSpheres));
+  for (int i = 0; i < spheres; ++i) {
+    const Eigen::Vector3d c = T_cam_marker * marker_.spheres[i].centre_marker_m;
+    items[n++] = {c.norm(), c, marker_.spheres[i].radius_m, ItemKind::sphere, i};
+  }
+  Rod bar, strut;
+  if (scene_.scenario == Scenario::side_light) {
+    lighting.side = true;
+    lighting.side_light = side_lighting(sp.side_light, T_cam_marker);
+    lighting.side_light.sphere_count = spheres;
+    for (int i = 0; i < spheres; ++i) {
+      lighting.side_light.sphere_centre_m[i] = items[i].centre_cam_m.cast<float>();
+      lighting.side_light.sphere_radius_m[i] = static_cast<float>(items[i].radius_m);
+    }
+    strut = lighting.side_light.strut;
+    if (strut.radius_m > 0.0f) {
+      items[n++] = {rod_depth_m(strut), Eigen::Vector3d::Zero(), 0.0, ItemKind::strut, 0};
+    }
+  }
+  if (scene_.scenario == Scenario::occluders && sp.occluders.radius_m > 0.0) {
+    bar = bar_in_camera(sp.occluders, T_cam_marker, time_s);
+    items[n++] = {rod_depth_m(bar), Eigen::Vector3d::Zero(), 0.0, ItemKind::bar, 0};
+  }
+  if (bubbles_) {
+    for (int i = 0; i < bubbles_->bubble_count(); ++i) {
+      const Speck s = bubbles_->bubble(i, time_s);
+      const Eigen::Vector3d c = T_cam_marker * s.centre_marker_m;
+      if (c.z() > 0.05) items[n++] = {c.norm(), c, s.radius_m, ItemKind::bubble, i};
+    }
+    for (int i = 0; i < bubbles_->particle_count(); ++i) {
+      const Speck s = bubbles_->particle(i, time_s);
+      const Eigen::Vector3d c = T_cam_marker * s.centre_marker_m;
+      if (c.z() > 0.05) items[n++] = {c.norm(), c, s.radius_m, ItemKind::particle, i};
+    }
+  }
+  std::sort(items.begin(), items.begin() + n, farther);
+  for (int k = 0; k < n; ++k) {
+    const DrawItem& it = items[k];
+    switch (it.kind) {
+      case ItemKind::sphere:
+        shade_sphere(marker_.spheres[it.index], it.centre_cam_m, lighting, it.index, out_bgr);
+        break;
+      case ItemKind::bubble:
+        bubbles_->draw_bubble(camera_, it.centre_cam_m, it.radius_m, out_bgr);
+        break;
+      case ItemKind::particle:
+        bubbles_->draw_particle(camera_, it.centre_cam_m, it.radius_m, out_bgr);
+        break;
+      case ItemKind::bar:
+        shade_rod(bar, sp.occluders.albedo_rgb.cast<float>(), lighting, out_bgr);
+        break;
+      case ItemKind::strut:
+        shade_rod(strut, sp.side_light.strut_albedo_rgb.cast<float>(), lighting, out_bgr);
+        break;
+    }
+  }
+  // The sensor records the exposed light, then adds its noise; the encoder compresses last.
+  if (exposure_) exposure_->apply(exposure_gain(sp.exposure, time_s), out_bgr);
   if (!noise_plus_.empty()) {
     const std::uint64_t h = splitmix64(noise_seed);
     const cv::Rect roi(static_cast<int>(h % kNoiseMargin),
@@ -180,13 +358,21 @@ void SceneRenderer::render(const Eigen::Isometry3d& T_cam_marker, std::uint64_t 
     cv::add(out_bgr, noise_plus_(roi), out_bgr);
     cv::subtract(out_bgr, noise_minus_(roi), out_bgr);
   }
+  if (compression_) compression_->apply(out_bgr);
+}
+
+void render_stereo(const SceneRenderer& left, const SceneRenderer& right, const StereoRig& rig,
+                   const Eigen::Isometry3d& T_cl_marker, std::uint64_t noise_seed, double time_s,
+                   cv::Mat& left_bgr, cv::Mat& right_bgr) {
+  left.render(T_cl_marker, noise_seed, time_s, left_bgr);
+  right.render(rig.T_cr_cl * T_cl_marker, splitmix64(noise_seed ^ 0xA5A5A5A5ull), time_s,
+               right_bgr);
 }
 
 void render_stereo(const SceneRenderer& left, const SceneRenderer& right, const StereoRig& rig,
                    const Eigen::Isometry3d& T_cl_marker, std::uint64_t noise_seed,
                    cv::Mat& left_bgr, cv::Mat& right_bgr) {
-  left.render(T_cl_marker, noise_seed, left_bgr);
-  right.render(rig.T_cr_cl * T_cl_marker, splitmix64(noise_seed ^ 0xA5A5A5A5ull), right_bgr);
+  render_stereo(left, right, rig, T_cl_marker, noise_seed, 0.0, left_bgr, right_bgr);
 }
 
 }  // namespace rovctl::hal::mock

@@ -1,12 +1,20 @@
 // Renders the three-sphere marker as one camera of the rig sees it: shaded spheres with specular
-// highlights over a background gradient, optional water attenuation and sensor noise.
+// highlights over a background gradient, optional water attenuation and sensor noise, and the
+// named imaging scenarios (turbid water, side light, bubbles, occluders, noisy, exposure).
 #pragma once
 
 #include <Eigen/Geometry>
 #include <cstdint>
 #include <opencv2/core/mat.hpp>
+#include <optional>
 #include <vector>
 
+#include "hal/mock/block_compression.hpp"
+#include "hal/mock/bubble_field.hpp"
+#include "hal/mock/camera_response.hpp"
+#include "hal/mock/render_scenario.hpp"
+#include "hal/mock/side_light.hpp"
+#include "hal/mock/water_optics.hpp"
 #include "hal/model/camera_model.hpp"
 #include "hal/model/marker_model.hpp"
 #include "hal/model/stereo_rig.hpp"
@@ -27,29 +35,58 @@ void describe(ParamVisitor& v, RenderOptions& options);
 
 class SceneRenderer {
  public:
+  // The clear scenario.
   SceneRenderer(const CameraModel& camera, const MarkerModel& marker, const RenderOptions& options);
-  // Renders one view into out_bgr (CV_8UC3, camera size). No heap allocation when out_bgr already
-  // has the right size and type. Deterministic for a given noise_seed.
-  void render(const Eigen::Isometry3d& T_cam_marker, std::uint64_t noise_seed,
+  // Any scenario; `scene.seed` lays out its random parts (give both views of a rig the same).
+  // Throws std::invalid_argument for inconsistent scenario parameters.
+  SceneRenderer(const CameraModel& camera, const MarkerModel& marker, const RenderOptions& options,
+                const SceneConditions& scene);
+
+  // Renders one view into out_bgr (CV_8UC3, camera size) as the scene stands at `time_s`
+  // (simulated time: what moves or drifts in a scenario moves with it; clear ignores it). No heap
+  // allocation when out_bgr already has the right size and type. Deterministic for a given
+  // noise_seed, time and scene seed.
+  void render(const Eigen::Isometry3d& T_cam_marker, std::uint64_t noise_seed, double time_s,
               cv::Mat& out_bgr) const;
+  // At time 0.
+  void render(const Eigen::Isometry3d& T_cam_marker, std::uint64_t noise_seed,
+              cv::Mat& out_bgr) const {
+    render(T_cam_marker, noise_seed, 0.0, out_bgr);
+  }
 
   const CameraModel& camera() const { return camera_; }
+  Scenario scenario() const { return scene_.scenario; }
 
  private:
+  struct FrameLighting;
+
   void shade_sphere(const MarkerSphere& sphere, const Eigen::Vector3d& centre_cam_m,
-                    cv::Mat& out_bgr) const;
+                    const FrameLighting& lighting, int self, cv::Mat& out_bgr) const;
+  void shade_rod(const Rod& rod, const Eigen::Vector3f& albedo, const FrameLighting& lighting,
+                 cv::Mat& out_bgr) const;
 
   CameraModel camera_;
   MarkerModel marker_;
   RenderOptions options_;
+  SceneConditions scene_;
   std::vector<Eigen::Vector3f> rays_;   // per pixel: the unit-z ray (x, y, 1) through its centre
   cv::Mat background_bgr_;              // CV_8UC3, the gradient
   cv::Mat noise_plus_, noise_minus_;    // CV_8UC3 noise texture split into its +/- parts
   std::vector<std::uint8_t> to_srgb8_;  // linear [0, 1] in 4096 steps -> 8-bit sRGB
   Eigen::Vector3d water_rgb_;           // veiling light colour (mean of the background)
+  // What the selected scenario needs, built once.
+  std::optional<WaterOptics> turbid_;
+  std::vector<Eigen::Vector3f> background_row_rgb_;  // turbid: the gradient per row, linear
+  std::optional<BubbleField> bubbles_;
+  std::optional<ExposureResponse> exposure_;
+  std::optional<BlockCompression> compression_;
 };
 
 // Both views of a rig: T_cr_marker = rig.T_cr_cl * T_cl_marker.
+void render_stereo(const SceneRenderer& left, const SceneRenderer& right, const StereoRig& rig,
+                   const Eigen::Isometry3d& T_cl_marker, std::uint64_t noise_seed, double time_s,
+                   cv::Mat& left_bgr, cv::Mat& right_bgr);
+// At time 0.
 void render_stereo(const SceneRenderer& left, const SceneRenderer& right, const StereoRig& rig,
                    const Eigen::Isometry3d& T_cl_marker, std::uint64_t noise_seed,
                    cv::Mat& left_bgr, cv::Mat& right_bgr);

@@ -102,6 +102,13 @@ void describe(ParamVisitor& v, SimParams& p) {
             [&p](ParamVisitor& s) { describe(s, p.trials); });
   v.section("faults", "hardware faults injected at run time",
             [&p](ParamVisitor& s) { describe(s, p.faults); });
+  v.param("scenario", p.scenario,
+          "imaging conditions of the simulated cameras: clear water (default), turbid water, a "
+          "side light with shadows, bubbles and particles, a passing occluder, a noisy "
+          "compressing sensor, or a drifting exposure",
+          scenario_names());
+  v.section("scenarios", "parameters of each imaging scenario (used when it is selected)",
+            [&p](ParamVisitor& s) { describe(s, p.scenarios); });
 }
 
 }  // namespace rovctl::hal::mock

@@ -1,12 +1,14 @@
 // The `sim` config section: everything the simulated world and the mock HAL are made of —
 // dynamics, thrusters, current, where the station stands, cameras, sensors, integration step,
-// trial randomisation and fault injection.
+// trial randomisation, fault injection and the imaging scenario the cameras render.
 #pragma once
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
+#include <string>
 
 #include "hal/mock/fault_injection.hpp"
+#include "hal/mock/render_scenario.hpp"
 #include "hal/mock/scene_renderer.hpp"
 #include "hal/mock/thruster_model.hpp"
 #include "hal/mock/vehicle_dynamics.hpp"
@@ -90,6 +92,10 @@ struct SimParams {
   SensorSimParams sensors;
   TrialRandomisation trials;
   FaultInjection faults;
+  // The imaging conditions the simulated cameras render (one of scenario_names()), and every
+  // scenario's parameters.
+  std::string scenario = "clear";
+  ScenarioParams scenarios;
 };
 
 void describe(ParamVisitor& v, SimParams& p);
