@@ -26,6 +26,12 @@ void check_range(double lo, double hi, const char* lo_key, const char* hi_key) {
   }
 }
 
+// Nearer than near_m, or far outside any lens's field (where the distortion polynomial runs
+// away), nothing is drawn.
+bool in_front(const Eigen::Vector3d& p, double near_m) {
+  return p.z() >= near_m && std::abs(p.x()) < 3.0 * p.z() && std::abs(p.y()) < 3.0 * p.z();
+}
+
 // Blends `target` into the pixel with opacity a.
 inline void blend(cv::Vec3b& px, float a, float target) {
   for (int ch = 0; ch < 3; ++ch) {
@@ -135,7 +141,7 @@ Speck BubbleField::particle(int i, double time_s) const {
 void BubbleField::draw_bubble(const CameraModel& cam, const Eigen::Vector3d& centre_cam_m,
                               double radius_m, cv::Mat& out_bgr) const {
   Eigen::Vector2d uv;
-  if (centre_cam_m.z() < 0.05 || !cam.project(centre_cam_m, uv)) return;
+  if (!in_front(centre_cam_m, 0.05) || !cam.project(centre_cam_m, uv)) return;
   const float r_px = static_cast<float>(cam.fx_px * radius_m / centre_cam_m.z());
   if (r_px < 0.3f) return;
   const float cu = static_cast<float>(uv.x()), cv_ = static_cast<float>(uv.y());
@@ -167,7 +173,7 @@ void BubbleField::draw_bubble(const CameraModel& cam, const Eigen::Vector3d& cen
 void BubbleField::draw_particle(const CameraModel& cam, const Eigen::Vector3d& centre_cam_m,
                                 double radius_m, cv::Mat& out_bgr) const {
   Eigen::Vector2d uv;
-  if (centre_cam_m.z() < 0.08 || !cam.project(centre_cam_m, uv)) return;
+  if (!in_front(centre_cam_m, 0.08) || !cam.project(centre_cam_m, uv)) return;
   const float r_px =
       std::clamp(static_cast<float>(cam.fx_px * radius_m / centre_cam_m.z()), 0.5f, 3.0f);
   // Lit by the vehicle's lamp: nearer particles are brighter.
