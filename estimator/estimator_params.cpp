@@ -48,6 +48,10 @@ void describe(hal::ParamVisitor& v, EstimatorParams& p) {
           {"-", 0.0, 1.0,
            "score of one sphere in one view (inner hits minus ring hits) at which it counts as "
            "seen; an estimate is ok only with every sphere seen in both views"});
+  v.param("rim_support", p.rim_support,
+          {"-", 0.0, 1.0,
+           "improved mode: fraction of a sphere's predicted rim that its colour edge must confirm "
+           "for a partly hidden sphere (score below sphere_support) to count as seen"});
   v.section("ga", "the genetic algorithm (paper's Table 2)", [&p](hal::ParamVisitor& s) {
     s.param("population", p.ga.population, {"-", 4, 2000, "number of genes"});
     s.param("selection_rate", p.ga.selection_rate,

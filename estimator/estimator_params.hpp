@@ -47,6 +47,7 @@ struct EstimatorParams {
   // A sphere counts as seen in a view when its score(v, s) reaches this (1 = the whole disc on
   // its colour and none of the ring).
   double sphere_support = 0.8;
+  double rim_support = 0.4;
   // Improved mode: how far the segmentation divides out the scene's colour cast (0 off, 1 full
   // von Kries white balance to the median colour).
   double water_correction = 0.0;

@@ -2,6 +2,7 @@
 // switchable: blob seeding during and elite refinement after evolution.
 #include "estimator/pose_estimator.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -33,7 +34,8 @@ PoseEstimator::PoseEstimator(const hal::StereoRig& rig, const hal::MarkerModel& 
       fitness_(rig, marker, params_.fitness),
       ga_(params_.ga, codec_, fitness_, seed),
       blobs_(rig, marker),
-      refiner_(rig, marker) {
+      refiner_(rig, marker),
+      rim_(rig, marker) {
   labels_[0].create(rig.left.height_px, rig.left.width_px, CV_8UC1);
   labels_[1].create(rig.right.height_px, rig.right.width_px, CV_8UC1);
   labels_[0].setTo(0);
@@ -125,20 +127,53 @@ PoseEstimate PoseEstimator::estimate() {
       }
     }
   }
+  if (improved && params_.refine_elite && estimate.fitness >= params_.recognition_threshold) {
+    // Then on the rims, from wherever the centroids (or the GA) left it: a hidden or shaded part
+    // of a sphere moves its centroid, not the rest of its rim.
+    Eigen::Isometry3d T = estimate.T_cl_marker;
+    RimFit fit;
+    if (rim_.refine(labels_[0], labels_[1], T, &fit)) {
+      // Trusted only when every sphere's rim is confirmed in both views over enough of its
+      // length: a blurred or faded edge is no rim, and then the centroids' pose stands.
+      double weakest = 1.0;
+      for (int v = 0; v < 2; ++v) {
+        for (std::size_t s = 0; s < fitness_.sphere_count() && s < 3; ++s) {
+          weakest = std::min(weakest, fit.support[v][s]);
+        }
+      }
+      const double f = fitness_.evaluate(T);
+      ++extra_evaluations_;
+      if (weakest >= params_.rim_support && f >= params_.recognition_threshold &&
+          f >= estimate.fitness - 0.15) {
+        estimate.T_cl_marker = T;
+        estimate.fitness = f;
+        estimate.rim_refined = true;
+        estimate.rim_rms_px = fit.rms_px;
+        estimate.error_bound_deg =
+            3.0 * std::sqrt(fit.covariance.topLeftCorner<3, 3>().trace()) * 180.0 / M_PI;
+        estimate.error_bound_m = 3.0 * std::sqrt(fit.covariance.bottomRightCorner<3, 3>().trace());
+      }
+      estimate.rim_support = fit.support;
+    }
+  }
   estimate.recognised = estimate.fitness >= params_.recognition_threshold;
   MarkerFitness::SphereScores& scores = estimate.sphere_scores;
   fitness_.sphere_scores(estimate.T_cl_marker, scores);
   const int spheres = static_cast<int>(fitness_.sphere_count());
   for (int v = 0; v < 2; ++v) {
     for (int s = 0; s < spheres && s < 3; ++s) {
-      if (scores[v][s] >= params_.sphere_support) ++estimate.spheres_seen[v];
+      // Whole and in colour, or partly hidden with its visible rim where the pose puts it.
+      const bool whole = scores[v][s] >= params_.sphere_support;
+      const bool rim = estimate.rim_refined && estimate.rim_support[v][s] >= params_.rim_support &&
+                       scores[v][s] > 0.0;
+      if (whole || rim) ++estimate.spheres_seen[v];
     }
   }
-  // Improved mode also asks the blobs: every sphere found whole in both views and one rigid
-  // marker through their centroids (the refinement accepted).
+  // Improved mode also asks the geometry: one rigid marker through the blobs' centroids or the
+  // spheres' rims (a refinement accepted).
   estimate.ok = estimate.recognised && estimate.spheres_seen[0] == spheres &&
                 estimate.spheres_seen[1] == spheres &&
-                (!improved || !params_.refine_elite || estimate.refined);
+                (!improved || !params_.refine_elite || estimate.refined || estimate.rim_refined);
   estimate.compute_time = Clock::now() - start;
   return estimate;
 }

@@ -16,6 +16,7 @@
 #include "estimator/hue_segmenter.hpp"
 #include "estimator/marker_fitness.hpp"
 #include "estimator/pose_refiner.hpp"
+#include "estimator/rim_refiner.hpp"
 #include "estimator/rmga.hpp"
 #include "hal/model/marker_model.hpp"
 #include "hal/model/stereo_rig.hpp"
@@ -41,6 +42,11 @@ struct PoseEstimate {
   double refine_rms_px = std::numeric_limits<double>::quiet_NaN();
   double error_bound_m = std::numeric_limits<double>::quiet_NaN();
   double error_bound_deg = std::numeric_limits<double>::quiet_NaN();
+  // Improved mode: then refined on the spheres' visible rims, which a partial view still shows
+  // truly; per view and sphere the fraction of the predicted rim the images confirm.
+  bool rim_refined = false;
+  double rim_rms_px = std::numeric_limits<double>::quiet_NaN();
+  std::array<std::array<double, 3>, 2> rim_support{};
   bool ok = false;
   int generations = 0;  // generations run this frame
   std::chrono::nanoseconds compute_time{0};
@@ -79,6 +85,7 @@ class PoseEstimator {
   Rmga ga_;
   BlobSeeder blobs_;
   PoseRefiner refiner_;
+  RimRefiner rim_;
   cv::Mat labels_[2];
   long extra_evaluations_ = 0;
   std::chrono::steady_clock::time_point frame_start_{};

@@ -96,7 +96,22 @@ int command_estimate(const Words& words) {
         .field("fitness", estimate.fitness)
         .field("error_bound_mm", estimate.error_bound_m * 1000.0)
         .field("error_bound_deg", estimate.error_bound_deg)
-        .field("refine_rms_px", estimate.refine_rms_px)
+        .field("refined_on",
+               std::string_view(estimate.rim_refined ? "rims"
+                                                     : (estimate.refined ? "centroids" : "none")))
+        .field("refine_rms_px", estimate.rim_refined ? estimate.rim_rms_px : estimate.refine_rms_px)
+        .begin_array("rim_support")
+        .begin_array()
+        .value(estimate.rim_support[0][0])
+        .value(estimate.rim_support[0][1])
+        .value(estimate.rim_support[0][2])
+        .end_array()
+        .begin_array()
+        .value(estimate.rim_support[1][0])
+        .value(estimate.rim_support[1][1])
+        .value(estimate.rim_support[1][2])
+        .end_array()
+        .end_array()
         .field("generations", generations)
         .field("time_ms", time_ms)
         .end_object();

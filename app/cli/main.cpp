@@ -13,11 +13,14 @@ namespace {
 constexpr const char* kUsage = R"(usage: rovctl <command> [options]
 
 commands:
-  sim        [--config FILE] [--trials N] [--seed S] [--realtime] [--json] [--out DIR]
-             closed-loop docking on the mock HAL
+  sim        [--config FILE] [--trials N] [--seed S] [--scenario NAME] [--realtime] [--json]
+             [--out DIR]   closed-loop docking on the mock HAL; NAME: clear, turbid,
+             side_light, bubbles, occluders, noisy, exposure
   estimate   --config FILE --left L.png --right R.png [--frames N] [--seed S] [--json]
              marker pose in the left camera frame from one stereo pair
   bench      [--config FILE] [--json]     estimator throughput and convergence
+  bench      --set DIR [--frames N] [--json] [--verbose]
+             the estimator on a validation set (DIR/manifest.json), per condition
   study      [--config FILE] [--quick] [--seeds N] [--out DIR] [--json]
              the paper's GA-parameter study on this machine
   run        --config FILE                the vehicle, with the backends the config names

@@ -140,6 +140,10 @@ std::vector<ConditionScore> score_validation_set(const hal::StereoRig& rig,
     r.spheres_seen_left = e.spheres_seen[0];
     r.spheres_seen_right = e.spheres_seen[1];
     r.sphere_scores = e.sphere_scores;
+    r.rim_refined = e.rim_refined;
+    r.rim_support = e.rim_support;
+    r.error_bound_mm = 1000.0 * e.error_bound_m;
+    r.error_bound_deg = e.error_bound_deg;
     r.translation_mm =
         (e.T_cl_marker.translation() - pair.T_cl_marker.translation()).norm() * 1000.0;
     r.rotation_deg = angle_deg(e.T_cl_marker.linear(), pair.T_cl_marker.linear());

@@ -6,6 +6,7 @@
 #include "app/runtime/app_config.hpp"
 #include "estimator/hue_segmenter.hpp"
 #include "estimator/pose_estimator.hpp"
+#include "estimator/rim_refiner.hpp"
 #include "estimator/stereo_calibration.hpp"
 #include "hal/mock/scene_renderer.hpp"
 #include "hal/model/pose.hpp"
@@ -58,6 +59,26 @@ void BM_Fitness(benchmark::State& state) {
   for (auto _ : state) benchmark::DoNotOptimize(est.fitness().evaluate(poses[i++ & 1023]));
 }
 BENCHMARK(BM_Fitness);
+
+// The rim refinement alone, from a pose 5 mm and 2 deg off (where the GA or the centroids leave
+// it): its share of the frame.
+void BM_RimRefine(benchmark::State& state) {
+  Scene& s = scene();
+  estimator::HueSegmenter seg(s.marker);
+  cv::Mat left_labels, right_labels;
+  seg.segment(s.l, left_labels);
+  seg.segment(s.r, right_labels);
+  estimator::RimRefiner rims(s.rig, s.marker);
+  Eigen::Isometry3d start = s.truth;
+  start.translation() += Eigen::Vector3d(0.003, -0.002, 0.004);
+  start.linear() =
+      Eigen::AngleAxisd(0.035, Eigen::Vector3d(1, 2, -1).normalized()) * start.linear();
+  for (auto _ : state) {
+    Eigen::Isometry3d T = start;
+    benchmark::DoNotOptimize(rims.refine(left_labels, right_labels, T));
+  }
+}
+BENCHMARK(BM_RimRefine)->Unit(benchmark::kMillisecond);
 
 void BM_EstimatorFrame(benchmark::State& state) {
   Scene& s = scene();

@@ -1,0 +1,336 @@
+// Rays cast outward from each predicted silhouette find the outermost edge of the sphere's colour;
+// an iteratively reweighted, Levenberg-damped Gauss-Newton moves the pose until the silhouettes
+// pass through those edges. Edges well inside a silhouette (a bar in front, a shadow, a bubble)
+// get no weight: they say where the sphere is hidden, not where it ends.
+#include "estimator/rim_refiner.hpp"
+
+#include <Eigen/Cholesky>
+#include <algorithm>
+#include <cmath>
+
+#include "hal/model/sphere_rim.hpp"
+
+namespace rovctl::estimator {
+namespace {
+
+// Inlier band per pass: wide while the start may be a few pixels off, then tight.
+struct Band {
+  double inside_px;   // edges further inside the silhouette are cuts (occluder, shadow)
+  double outside_px;  // edges further outside are another object of the same colour
+};
+constexpr std::array<Band, 2> kBands{{{4.0, 4.0}, {2.0, 3.0}}};
+constexpr double kHuberPx = 1.0;
+// Neighbouring rim points share pixels and the segmenter's bias, so they are not independent:
+// the covariance counts about this many independent points per silhouette.
+constexpr double kIndependentPerSilhouette = 8.0;
+constexpr double kEdgeNoisePx = 0.3;
+constexpr int kMinInliers = 40;
+
+double weight(double r, const Band& band) {
+  if (r < -band.inside_px || r > band.outside_px) return 0.0;
+  const double a = std::abs(r);
+  return a <= kHuberPx ? 1.0 : kHuberPx / a;
+}
+
+Eigen::Isometry3d perturbed(const Eigen::Isometry3d& T, const Eigen::Matrix<double, 6, 1>& d) {
+  Eigen::Isometry3d out = T;
+  const double angle = d.head<3>().norm();
+  if (angle > 0.0) {
+    out.linear() = Eigen::AngleAxisd(angle, d.head<3>() / angle).toRotationMatrix() * T.linear();
+  }
+  out.translation() += d.tail<3>();
+  return out;
+}
+
+}  // namespace
+
+double RimRefiner::Silhouette::radius_along(const Eigen::Vector2d& d) const {
+  const double angle = std::atan2(d.y(), d.x());
+  const int hi = static_cast<int>(std::upper_bound(angle_rad.begin(), angle_rad.end(), angle) -
+                                  angle_rad.begin());
+  const Eigen::Vector2d& pa = offset_px[(hi + kPolygon - 1) % kPolygon];
+  const Eigen::Vector2d& pb = offset_px[hi % kPolygon];
+  // Where the ray from the centre along d crosses the segment pa-pb.
+  const Eigen::Vector2d e = pb - pa;
+  const double den = d.x() * e.y() - d.y() * e.x();
+  const double n = d.norm();
+  if (std::abs(den) < 1e-12 * n) return 0.5 * (pa.norm() + pb.norm());
+  return (pa.x() * e.y() - pa.y() * e.x()) / den * n;
+}
+
+RimRefiner::RimRefiner(const hal::StereoRig& rig, const hal::MarkerModel& marker)
+    : rig_(rig),
+      marker_(marker),
+      spheres_(static_cast<int>(std::min<std::size_t>(marker.spheres.size(), kSpheres))) {}
+
+Eigen::Vector3d RimRefiner::centre_in_view(const Eigen::Isometry3d& T, int view, int sphere) const {
+  const Eigen::Vector3d c = T * marker_.spheres[sphere].centre_marker_m;
+  return view == 0 ? c : rig_.T_cr_cl * c;
+}
+
+bool RimRefiner::predict_one(int view, int sphere, const Eigen::Vector3d& c,
+                             Silhouette& sil) const {
+  sil.valid = false;
+  const hal::CameraModel& cam = view == 0 ? rig_.left : rig_.right;
+  hal::SphereRim rim;
+  if (!hal::sphere_rim(c, marker_.spheres[sphere].radius_m, rim)) return false;
+  std::array<Eigen::Vector2d, kPolygon> p;
+  Eigen::Vector2d centre = Eigen::Vector2d::Zero();
+  for (int k = 0; k < kPolygon; ++k) {
+    if (!cam.project(rim.point(2.0 * M_PI * k / kPolygon), p[k])) return false;
+    centre += p[k];
+  }
+  centre /= kPolygon;
+  // Counter-clockwise in angle, starting at the smallest: radius_along's binary search.
+  const Eigen::Vector2d a = p[0] - centre, b = p[1] - centre;
+  const bool reverse = a.x() * b.y() - a.y() * b.x() < 0.0;
+  int first = 0;
+  double smallest = 10.0;
+  for (int k = 0; k < kPolygon; ++k) {
+    const Eigen::Vector2d d = p[reverse ? kPolygon - 1 - k : k] - centre;
+    const double ang = std::atan2(d.y(), d.x());
+    if (ang < smallest) {
+      smallest = ang;
+      first = k;
+    }
+  }
+  for (int k = 0; k < kPolygon; ++k) {
+    const int step = (first + k) % kPolygon;
+    sil.offset_px[k] = p[reverse ? kPolygon - 1 - step : step] - centre;
+    sil.angle_rad[k] = std::atan2(sil.offset_px[k].y(), sil.offset_px[k].x());
+  }
+  // A silhouette wrapped onto itself (lens distortion far outside its range) is no ellipse.
+  if (!std::is_sorted(sil.angle_rad.begin(), sil.angle_rad.end())) return false;
+  sil.centre_px = centre;
+  sil.valid = true;
+  return true;
+}
+
+void RimRefiner::predict(const Eigen::Isometry3d& T, Silhouettes& out) const {
+  for (int view = 0; view < 2; ++view) {
+    for (int s = 0; s < spheres_; ++s)
+      predict_one(view, s, centre_in_view(T, view, s), out[view][s]);
+  }
+}
+
+void RimRefiner::find_edges(const cv::Mat* labels[2], const Silhouettes& predicted,
+                            Edges& edges) const {
+  edges.count = 0;
+  constexpr double kStepPx = 0.5;
+  for (int view = 0; view < 2; ++view) {
+    const cv::Mat& image = *labels[view];
+    for (int s = 0; s < spheres_; ++s) {
+      edges.first[view][s] = edges.count;
+      edges.first[view][s + 1] = edges.count;
+      const Silhouette& sil = predicted[view][s];
+      if (!sil.valid) continue;
+      const auto colour = static_cast<std::uint8_t>(marker_.spheres[s].colour);
+      for (int k = 0; k < kRays; ++k) {
+        const double theta = 2.0 * M_PI * k / kRays - M_PI;
+        const double c = std::cos(theta), sn = std::sin(theta);
+        const double rho = sil.radius_along(Eigen::Vector2d(c, sn));
+        double edge_t = -1.0;
+        int run = 0;  // consecutive colour samples
+        bool in_colour = false, cut_by_border = false;
+        for (double t = 0.3 * rho; t <= 1.6 * rho + 2.0; t += kStepPx) {
+          const long u = std::lround(sil.centre_px.x() + t * c);
+          const long v = std::lround(sil.centre_px.y() + t * sn);
+          if (u < 0 || v < 0 || u >= image.cols || v >= image.rows) {
+            cut_by_border = in_colour;
+            break;
+          }
+          const bool hit = image.ptr<std::uint8_t>(static_cast<int>(v))[u] == colour;
+          if (hit) {
+            ++run;
+          } else if (in_colour && run >= 2) {
+            edge_t = t - 0.5 * kStepPx;  // between the last colour sample and this one
+          }
+          if (!hit) run = 0;
+          in_colour = hit;
+        }
+        // Colour up to the border: the rim is outside the image; any edge before it is inner.
+        if (cut_by_border || in_colour || edge_t < 0.0) continue;
+        EdgePoint& e = edges.points[edges.count++];
+        e.uv_px = sil.centre_px + edge_t * Eigen::Vector2d(c, sn);
+        e.view = static_cast<std::uint8_t>(view);
+        e.sphere = static_cast<std::uint8_t>(s);
+      }
+      edges.first[view][s + 1] = edges.count;
+    }
+  }
+}
+
+void RimRefiner::silhouette_residuals(const Edges& edges, int view, int sphere,
+                                      const Silhouette& sil, Residuals& r) const {
+  for (int i = edges.first[view][sphere]; i < edges.first[view][sphere + 1]; ++i) {
+    const Eigen::Vector2d d = edges.points[i].uv_px - sil.centre_px;
+    r(i) = d.norm() - sil.radius_along(d);
+  }
+}
+
+bool RimRefiner::residuals(const Edges& edges, const Eigen::Isometry3d& T, Residuals& r) const {
+  r.head(edges.count).setZero();
+  for (int view = 0; view < 2; ++view) {
+    for (int s = 0; s < spheres_; ++s) {
+      if (edges.first[view][s] == edges.first[view][s + 1]) continue;
+      Silhouette sil;
+      if (!predict_one(view, s, centre_in_view(T, view, s), sil)) return false;
+      silhouette_residuals(edges, view, s, sil, r);
+    }
+  }
+  return r.head(edges.count).allFinite();
+}
+
+bool RimRefiner::jacobian(const Edges& edges, const Eigen::Isometry3d& T, Jacobian& J) const {
+  constexpr double h = 1e-6;  // m
+  Residuals rk, rb;
+  for (int view = 0; view < 2; ++view) {
+    // The centre in the view's frame c_v = R_v (exp(w) R p + t + dt) + t_v: dc_v/dw = -R_v [R p]x,
+    // dc_v/dt = R_v.
+    const Eigen::Matrix3d R_v =
+        view == 0 ? Eigen::Matrix3d::Identity() : rig_.T_cr_cl.linear().eval();
+    for (int s = 0; s < spheres_; ++s) {
+      const int from = edges.first[view][s], to = edges.first[view][s + 1];
+      if (from == to) continue;
+      const Eigen::Vector3d c = centre_in_view(T, view, s);
+      Silhouette base;
+      if (!predict_one(view, s, c, base)) return false;
+      silhouette_residuals(edges, view, s, base, rb);
+      Eigen::Matrix<double, Eigen::Dynamic, 3, 0, kRays, 3> dr_dc(to - from, 3);
+      for (int k = 0; k < 3; ++k) {
+        Silhouette sil;
+        if (!predict_one(view, s, c + h * Eigen::Vector3d::Unit(k), sil)) return false;
+        silhouette_residuals(edges, view, s, sil, rk);
+        dr_dc.col(k) = (rk.segment(from, to - from) - rb.segment(from, to - from)) / h;
+      }
+      const Eigen::Vector3d Rp = T.linear() * marker_.spheres[s].centre_marker_m;
+      Eigen::Matrix3d Rp_cross;
+      Rp_cross << 0, -Rp.z(), Rp.y(), Rp.z(), 0, -Rp.x(), -Rp.y(), Rp.x(), 0;
+      Eigen::Matrix<double, 3, 6> dc_dpose;
+      dc_dpose.leftCols<3>() = -R_v * Rp_cross;
+      dc_dpose.rightCols<3>() = R_v;
+      J.block(from, 0, to - from, 6) = dr_dc * dc_dpose;
+    }
+  }
+  return J.topRows(edges.count).allFinite();
+}
+
+bool RimRefiner::refine(const cv::Mat& left_labels, const cv::Mat& right_labels,
+                        Eigen::Isometry3d& T_cl_marker, RimFit* fit) const {
+  const cv::Mat* labels[2] = {&left_labels, &right_labels};
+  using Vector7 = Eigen::Matrix<double, 7, 1>;
+  using Matrix7 = Eigen::Matrix<double, 7, 7>;
+  Eigen::Isometry3d T = T_cl_marker;
+  // Where the segmenter puts a colour edge depends on the contrast with the water (a faded edge
+  // ends early, a bright one blooms), and a quarter pixel on every rim is millimetres in range
+  // through the spheres' apparent size. One edge offset (px), estimated with the pose, leaves the
+  // range to the stereo baseline.
+  double offset_px = 0.0;
+  constexpr double kOffsetPriorPx = 1.0;
+  Edges edges;
+  Residuals r0, w;
+  Jacobian J;
+  auto full_residuals = [&](const Eigen::Isometry3d& at, double off, Residuals& r) {
+    if (!residuals(edges, at, r)) return false;
+    r.head(edges.count).array() -= off;
+    return true;
+  };
+  auto weighted_cost = [&](const Residuals& r, double off) {
+    return (w.head(edges.count).array() * r.head(edges.count).array().square()).sum() +
+           off * off / (kOffsetPriorPx * kOffsetPriorPx);
+  };
+  // Normal equations of the weighted problem in (rotation vector, translation, offset), with the
+  // offset's prior.
+  auto normal_equations = [&](const Eigen::Isometry3d& at, const Residuals& r, double off,
+                              Matrix7& A, Vector7& g) {
+    if (!jacobian(edges, at, J)) return false;
+    A.setZero();
+    g.setZero();
+    for (int i = 0; i < edges.count; ++i) {
+      Vector7 j;
+      j.head<6>() = J.row(i).transpose();
+      j(6) = -1.0;
+      A.noalias() += w(i) * j * j.transpose();
+      g.noalias() += w(i) * r(i) * j;
+    }
+    A(6, 6) += 1.0 / (kOffsetPriorPx * kOffsetPriorPx);
+    g(6) += off / (kOffsetPriorPx * kOffsetPriorPx);
+    return true;
+  };
+  for (const Band& band : kBands) {
+    Silhouettes sil;
+    predict(T, sil);
+    find_edges(labels, sil, edges);
+    if (edges.count < kMinInliers || !full_residuals(T, offset_px, r0)) return false;
+    double lambda = 1e-3;
+    Matrix7 A;
+    Vector7 g;
+    bool moved = true;
+    for (int iter = 0; iter < 10; ++iter) {
+      if (moved) {
+        for (int i = 0; i < edges.count; ++i) w(i) = weight(r0(i), band);
+        if (!normal_equations(T, r0, offset_px, A, g)) return false;
+      }
+      Matrix7 damped = A;
+      damped.diagonal() *= 1.0 + lambda;
+      damped.diagonal().array() += 1e-12;
+      const Vector7 step = -damped.ldlt().solve(g);
+      if (!step.allFinite()) return false;
+      const Eigen::Isometry3d candidate = perturbed(T, step.head<6>());
+      Residuals r1;
+      moved = full_residuals(candidate, offset_px + step(6), r1) &&
+              weighted_cost(r1, offset_px + step(6)) < weighted_cost(r0, offset_px);
+      if (moved) {
+        T = candidate;
+        offset_px += step(6);
+        r0 = r1;
+        lambda = std::max(1e-6, lambda * 0.3);
+        // 10 um and 10 urad: far below what the rims can tell.
+        if (step.head<6>().norm() < 1e-5) break;
+      } else {
+        lambda *= 10.0;
+        if (lambda > 1e6) break;
+      }
+    }
+  }
+  // The final edges, seen from the refined pose, decide support and the residual.
+  const Band& tight = kBands.back();
+  {
+    Silhouettes sil;
+    predict(T, sil);
+    find_edges(labels, sil, edges);
+    if (!full_residuals(T, offset_px, r0)) return false;
+  }
+  RimFit result;
+  double sum2 = 0.0;
+  for (int i = 0; i < edges.count; ++i) {
+    w(i) = weight(r0(i), tight);
+    if (std::abs(r0(i)) <= kInlierPx) {
+      ++result.inliers;
+      sum2 += r0(i) * r0(i);
+      result.support[edges.points[i].view][edges.points[i].sphere] += 1.0 / kRays;
+    }
+  }
+  if (result.inliers < kMinInliers) return false;
+  result.rms_px = std::sqrt(sum2 / result.inliers);
+  if (fit != nullptr) {
+    int silhouettes = 0;
+    for (const auto& view : result.support) {
+      for (double s : view) silhouettes += s > 0.0 ? 1 : 0;
+    }
+    const double sigma_px = std::max(result.rms_px, kEdgeNoisePx) *
+                            std::sqrt(result.inliers / (kIndependentPerSilhouette * silhouettes));
+    Matrix7 A;
+    Vector7 g;
+    if (normal_equations(T, r0, offset_px, A, g)) {
+      // The pose's marginal covariance: the offset is a nuisance parameter.
+      const Matrix7 cov = sigma_px * sigma_px * A.ldlt().solve(Matrix7::Identity());
+      result.covariance = cov.topLeftCorner<6, 6>();
+    }
+    *fit = result;
+  }
+  T_cl_marker = T;
+  return true;
+}
+
+}  // namespace rovctl::estimator

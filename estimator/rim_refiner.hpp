@@ -1,0 +1,88 @@
+// Improvement beyond the paper: refines a pose on the spheres' visible rims in the label images.
+// A rim point sits where the sphere truly ends; a centroid moves when part of a sphere is hidden,
+// shaded or cut by the image border, so the rims are what a partial view can still be trusted on.
+#pragma once
+
+#include <Eigen/Geometry>
+#include <array>
+#include <cstdint>
+#include <opencv2/core/mat.hpp>
+
+#include "hal/model/marker_model.hpp"
+#include "hal/model/stereo_rig.hpp"
+
+namespace rovctl::estimator {
+
+// What the rims say about a refined pose.
+struct RimFit {
+  int inliers = 0;      // rim points within the inlier band at the end
+  double rms_px = 0.0;  // of the inliers, radial
+  // Per view and sphere (marker order): the fraction of the rays cast around the predicted
+  // silhouette whose colour edge lies on it. A whole sphere ~1; half hidden ~0.5; absent 0.
+  std::array<std::array<double, 3>, 2> support{};
+  // Covariance of the pose's error, rotation vector (rad) then translation (m).
+  Eigen::Matrix<double, 6, 6> covariance = Eigen::Matrix<double, 6, 6>::Zero();
+};
+
+class RimRefiner {
+ public:
+  RimRefiner(const hal::StereoRig& rig, const hal::MarkerModel& marker);
+
+  // Refines T_cl_marker in place on the label images (CV_8UC1 of ColourClass, each its camera's
+  // size). False (pose unchanged) when too few rim points agree or the fit does not converge.
+  // Allocates nothing.
+  bool refine(const cv::Mat& left_labels, const cv::Mat& right_labels,
+              Eigen::Isometry3d& T_cl_marker, RimFit* fit = nullptr) const;
+
+  static constexpr int kRays = 48;     // per sphere and view
+  static constexpr int kPolygon = 32;  // vertices of a predicted silhouette
+  static constexpr double kInlierPx = 1.5;
+
+ private:
+  static constexpr int kSpheres = 3;
+  static constexpr int kMaxPoints = 2 * kSpheres * kRays;
+
+  // A predicted silhouette: its centre and its outline about it, counter-clockwise from the
+  // vertex of smallest angle.
+  struct Silhouette {
+    bool valid = false;
+    Eigen::Vector2d centre_px = Eigen::Vector2d::Zero();
+    std::array<double, kPolygon> angle_rad{};
+    std::array<Eigen::Vector2d, kPolygon> offset_px{};
+    // Distance from the centre to the outline along the direction d (not normalised).
+    double radius_along(const Eigen::Vector2d& d) const;
+  };
+  using Silhouettes = std::array<std::array<Silhouette, kSpheres>, 2>;
+
+  struct EdgePoint {
+    Eigen::Vector2d uv_px;
+    std::uint8_t view = 0, sphere = 0;
+  };
+  struct Edges {
+    std::array<EdgePoint, kMaxPoints> points;
+    int count = 0;
+    std::array<std::array<int, kSpheres + 1>, 2> first{};  // [view][sphere]: points' range
+  };
+  using Residuals = Eigen::Matrix<double, kMaxPoints, 1>;
+  using Jacobian = Eigen::Matrix<double, kMaxPoints, 6>;
+
+  // The sphere's centre in one camera's frame at pose T.
+  Eigen::Vector3d centre_in_view(const Eigen::Isometry3d& T, int view, int sphere) const;
+  bool predict_one(int view, int sphere, const Eigen::Vector3d& centre_cam_m,
+                   Silhouette& out) const;
+  void predict(const Eigen::Isometry3d& T, Silhouettes& out) const;
+  void find_edges(const cv::Mat* labels[2], const Silhouettes& predicted, Edges& edges) const;
+  // Signed radial distance of one silhouette's edge points from it (outside > 0).
+  void silhouette_residuals(const Edges& edges, int view, int sphere, const Silhouette& sil,
+                            Residuals& r) const;
+  bool residuals(const Edges& edges, const Eigen::Isometry3d& T, Residuals& r) const;
+  // d residual / d (rotation vector, translation), through each sphere's centre: a silhouette
+  // depends on its sphere's centre alone, so three differences per silhouette suffice.
+  bool jacobian(const Edges& edges, const Eigen::Isometry3d& T, Jacobian& J) const;
+
+  hal::StereoRig rig_;
+  hal::MarkerModel marker_;
+  int spheres_ = 0;
+};
+
+}  // namespace rovctl::estimator
