@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "hal/model/pose.hpp"
 #include "hal/model/sphere_rim.hpp"
 
 namespace rovctl::estimator {
@@ -72,15 +73,6 @@ bool PoseRefiner::refine(const BlobSet& blobs, Eigen::Isometry3d& T_cl_marker, d
     }
   }
   if (used < 4) return false;
-  auto perturbed = [](const Eigen::Isometry3d& T, const Eigen::Matrix<double, 6, 1>& d) {
-    Eigen::Isometry3d out = T;
-    const double angle = d.head<3>().norm();
-    if (angle > 0.0) {
-      out.linear() = Eigen::AngleAxisd(angle, d.head<3>() / angle).toRotationMatrix() * T.linear();
-    }
-    out.translation() += d.tail<3>();
-    return out;
-  };
   Eigen::Isometry3d T = T_cl_marker;
   Residuals r0;
   if (!residuals(blobs, T, r0)) return false;
@@ -91,7 +83,7 @@ bool PoseRefiner::refine(const BlobSet& blobs, Eigen::Isometry3d& T_cl_marker, d
       Eigen::Matrix<double, 6, 1> d = Eigen::Matrix<double, 6, 1>::Zero();
       d(k) = h;
       Residuals rk;
-      if (!residuals(blobs, perturbed(T, d), rk)) return false;
+      if (!residuals(blobs, hal::perturbed(T, d), rk)) return false;
       J.col(k) = (rk - r0) / h;
     }
     return true;
@@ -105,7 +97,7 @@ bool PoseRefiner::refine(const BlobSet& blobs, Eigen::Isometry3d& T_cl_marker, d
     A.diagonal().array() += 1e-12;
     const Eigen::Matrix<double, 6, 1> step = -A.ldlt().solve(g);
     if (!step.allFinite()) return false;
-    const Eigen::Isometry3d candidate = perturbed(T, step);
+    const Eigen::Isometry3d candidate = hal::perturbed(T, step);
     Residuals r1;
     if (residuals(blobs, candidate, r1) && r1.squaredNorm() < r0.squaredNorm()) {
       T = candidate;

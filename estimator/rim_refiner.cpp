@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "hal/model/pose.hpp"
 #include "hal/model/sphere_rim.hpp"
 
 namespace rovctl::estimator {
@@ -30,16 +31,6 @@ double weight(double r, const Band& band) {
   if (r < -band.inside_px || r > band.outside_px) return 0.0;
   const double a = std::abs(r);
   return a <= kHuberPx ? 1.0 : kHuberPx / a;
-}
-
-Eigen::Isometry3d perturbed(const Eigen::Isometry3d& T, const Eigen::Matrix<double, 6, 1>& d) {
-  Eigen::Isometry3d out = T;
-  const double angle = d.head<3>().norm();
-  if (angle > 0.0) {
-    out.linear() = Eigen::AngleAxisd(angle, d.head<3>() / angle).toRotationMatrix() * T.linear();
-  }
-  out.translation() += d.tail<3>();
-  return out;
 }
 
 }  // namespace
@@ -276,7 +267,7 @@ bool RimRefiner::refine(const cv::Mat& left_labels, const cv::Mat& right_labels,
       damped.diagonal().array() += 1e-12;
       const Vector7 step = -damped.ldlt().solve(g);
       if (!step.allFinite()) return false;
-      const Eigen::Isometry3d candidate = perturbed(T, step.head<6>());
+      const Eigen::Isometry3d candidate = hal::perturbed(T, step.head<6>());
       Residuals r1;
       moved = full_residuals(candidate, offset_px + step(6), r1) &&
               weighted_cost(r1, offset_px + step(6)) < weighted_cost(r0, offset_px);

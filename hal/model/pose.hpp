@@ -19,4 +19,16 @@ inline double rotation_angle_rad(const Eigen::Matrix3d& Ra, const Eigen::Matrix3
   return Eigen::AngleAxisd(Ra.transpose() * Rb).angle();
 }
 
+// T moved by a small step: the rotation vector d(0..2) applied on the left (in T's parent frame),
+// d(3..5) added to the translation. The refiners' parametrisation of a pose increment.
+inline Pose perturbed(const Pose& T, const Eigen::Matrix<double, 6, 1>& d) {
+  Pose out = T;
+  const double angle = d.head<3>().norm();
+  if (angle > 0.0) {
+    out.linear() = Eigen::AngleAxisd(angle, d.head<3>() / angle).toRotationMatrix() * T.linear();
+  }
+  out.translation() += d.tail<3>();
+  return out;
+}
+
 }  // namespace rovctl::hal
