@@ -14,7 +14,8 @@ constexpr const char* kUsage = R"(usage: rovctl <command> [options]
 
 commands:
   sim        [--config FILE] [--trials N] [--seed S] [--realtime] [--json] [--out DIR]
-             closed-loop docking on the mock HAL
+             [--mission dock|recharge] [--scenario NAME] [--jobs N] [--max-time S]
+             closed-loop docking (or dock, charge, undock: --mission recharge) on the mock HAL
   estimate   --config FILE --left L.png --right R.png [--frames N] [--seed S] [--json]
              marker pose in the left camera frame from one stereo pair
   bench      [--config FILE] [--json]     estimator throughput and convergence
