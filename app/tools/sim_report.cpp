@@ -213,6 +213,16 @@ void plot_trial(const TrialResult& trial, const std::string& png_path) {
                 trial.conditions.current_mean_world_mps.norm(),
                 trial.success ? "DOCKED" : trial.final_state.c_str(), trial.lateral_error_mm,
                 trial.yaw_error_deg, trial.time_to_dock_s);
+  if (trial.recharge) {
+    const RechargeResult& c = trial.charge;
+    std::snprintf(title, sizeof(title),
+                  "Recharge trial %d: start %.2f m, current %.3f m/s -> %s (docked %.1f s, seated "
+                  "%.2f h, hold %.1f Wh of %.1f Wh charged, re-seats %d)",
+                  trial.conditions.index, trial.conditions.distance_m,
+                  trial.conditions.current_mean_world_mps.norm(),
+                  trial_recharged(trial) ? "RECHARGED" : trial.final_state.c_str(),
+                  trial.time_to_dock_s, c.seated_s / 3600.0, c.hold_wh, c.charged_wh, c.reseats);
+  }
   Plot plot(title, 1400);
   auto& p1 = plot.add_panel("Marker position in the left camera: estimate vs truth", "time [s]",
                             "position [m]");
