@@ -108,7 +108,7 @@ void describe(hal::ParamVisitor& v, ControlParams& p);
 // probe at the socket mouth; negative: short of it).
 struct RechargeParams {
   // CHARGING: push along the docking axis (feed-forward) while the servo holds lateral and yaw.
-  double charge_push_n = 5.0;
+  double charge_push_n = 3.0;
   // Charge complete: SoC at or above soc_complete_fraction, or the charge current below
   // complete_current_a once the SoC is past complete_min_soc_fraction (the charger's taper).
   double soc_complete_fraction = 0.95;

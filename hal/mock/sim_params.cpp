@@ -37,6 +37,8 @@ void describe(ParamVisitor& v, ContactParams& p) {
   v.param("damping_nspm", p.damping_nspm, {"N s/m", 0.0, 1e5, "contact damping"});
   v.param("socket_wall", p.socket_wall,
           "a probe past the socket mouth meets the socket's wall sideways (not the face)");
+  v.param("bore_radius_m", p.bore_radius_m,
+          {"m", 0.0, 0.5, "radius of the socket's bore at the capture depth (the funnel narrows)"});
   v.param("wall_band_m", p.wall_band_m,
           {"m", 0.0, 0.1, "how far beyond the funnel tolerance the wall catches the probe"});
 }

@@ -44,10 +44,13 @@ struct ContactParams {
   // Penalty contact between the probe tip and the station face / socket bottom.
   double stiffness_npm = 3000.0;
   double damping_nspm = 150.0;
-  // The socket's wall: a probe past the mouth that slides sideways meets it (within wall_band_m
-  // beyond the funnel) instead of the station face. Off in the docking trials, whose latch holds
-  // the probe; the recharge trials, which hold it themselves, turn it on.
+  // The socket's wall: past the mouth the socket narrows from the funnel (lateral_tolerance_m) to
+  // a bore of bore_radius_m at the capture depth, and a probe that slides sideways meets it
+  // (within wall_band_m beyond the funnel) instead of the station face. Off in the docking
+  // trials, whose latch holds the probe; the recharge trials, which hold it themselves, turn it
+  // on: a point contact with a 3 cm play would let the push buckle the vehicle about the probe.
   bool socket_wall = false;
+  double bore_radius_m = 0.005;
   double wall_band_m = 0.01;
 };
 

@@ -104,7 +104,11 @@ Eigen::Vector3d SimulatedWorld::contact_force_world(const VehicleState& s, bool&
   // socket bottom at the capture depth does.
   const ContactParams& c = params_.contact;
   const double lateral = std::hypot(d.x(), d.y());
-  const bool walled = c.socket_wall && d.z() > 0.0 && lateral > c.lateral_tolerance_m &&
+  // The wall's radius at this depth: the funnel narrowing to the bore at the capture depth.
+  const double depth = std::clamp(d.z() / std::max(1e-6, station_.capture_depth_m), 0.0, 1.0);
+  const double wall_radius_m =
+      c.lateral_tolerance_m - depth * std::max(0.0, c.lateral_tolerance_m - c.bore_radius_m);
+  const bool walled = c.socket_wall && d.z() > 0.0 && lateral > wall_radius_m &&
                       lateral <= c.lateral_tolerance_m + c.wall_band_m;
   const bool in_socket = lateral <= c.lateral_tolerance_m || walled;
   const double penetration = in_socket ? d.z() - station_.capture_depth_m : d.z();
@@ -115,7 +119,7 @@ Eigen::Vector3d SimulatedWorld::contact_force_world(const VehicleState& s, bool&
     touching = true;
     const Eigen::Vector3d out_world =
         T_world_marker_.linear() * Eigen::Vector3d(d.x(), d.y(), 0.0) / lateral;
-    const double push = c.stiffness_npm * (lateral - c.lateral_tolerance_m) +
+    const double push = c.stiffness_npm * (lateral - wall_radius_m) +
                         c.damping_nspm * tip_velocity_world.dot(out_world);
     f -= std::max(0.0, push) * out_world;
   }
@@ -170,7 +174,7 @@ void SimulatedWorld::update_docking() {
   const bool centred = docking_.lateral_error_m <= params_.contact.lateral_tolerance_m;
   if (touching && !centred) docking_.collided = true;
   const double seat_radius_m = params_.contact.lateral_tolerance_m +
-                              (params_.contact.socket_wall ? params_.contact.wall_band_m : 0.0);
+                               (params_.contact.socket_wall ? params_.contact.wall_band_m : 0.0);
   docking_.seated = docking_.lateral_error_m <= seat_radius_m &&
                     d.z() >= station_.capture_depth_m - params_.recharge.charger.pin_engage_m &&
                     docking_.misalignment_rad <= params_.contact.angle_tolerance_deg * kDegToRad;
