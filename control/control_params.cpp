@@ -91,7 +91,47 @@ void describe(hal::ParamVisitor& v, ControlParams& p) {
             [&p](hal::ParamVisitor& s) { describe(s, p.failsafe); });
 }
 
+void describe(hal::ParamVisitor& v, RechargeParams& p) {
+  v.param("charge_push_n", p.charge_push_n,
+          {"N", 0.0, 200.0, "CHARGING: feed-forward push along the docking axis"});
+  v.param("soc_complete_fraction", p.soc_complete_fraction,
+          {"-", 0.0, 1.0, "state of charge that completes the charge"});
+  v.param("complete_current_a", p.complete_current_a,
+          {"A", 0.0, 1000.0, "charge current below which the charge is complete (tapered)"});
+  v.param("complete_min_soc_fraction", p.complete_min_soc_fraction,
+          {"-", 0.0, 1.0, "SoC from which a low charge current means complete, not a fault"});
+  v.param("charge_timeout_s", p.charge_timeout_s,
+          {"s", 1.0, 1e6, "CHARGING time limit (then UNDOCK)"});
+  v.param("unseat_confirm_s", p.unseat_confirm_s,
+          {"s", 0.0, 60.0, "contact lost (or vision: probe out) this long counts as unseated"});
+  v.param("vision_unseat_m", p.vision_unseat_m,
+          {"m", 0.0, 0.5, "vision: probe this far short of the socket mouth is unseated"});
+  v.param("max_reseats", p.max_reseats,
+          {"-", 0, 100, "re-seats (DOCK again) allowed; one more unseat: UNDOCK, then ABORT"});
+  v.param("no_current_a", p.no_current_a,
+          {"A", 0.0, 1000.0, "charge current below which the charger delivers nothing"});
+  v.param("no_current_s", p.no_current_s,
+          {"s", 0.1, 600.0, "seated without charge current this long: UNDOCK (charger fault)"});
+  v.param("overload_force_n", p.overload_force_n,
+          {"N", 1.0, 1000.0, "horizontal hold force beyond which the current is too strong"});
+  v.param("overload_s", p.overload_s,
+          {"s", 0.0, 600.0, "how long the hold may exceed overload_force_n before UNDOCK"});
+  v.param("undock_speed_mps", p.undock_speed_mps,
+          {"m/s", 0.005, 1.0, "UNDOCK: speed of the set-point backing out along the axis"});
+  v.param("undock_push_n", p.undock_push_n,
+          {"N", 0.0, 200.0, "UNDOCK: backward push while the marker is not seen"});
+  v.param("undock_timeout_s", p.undock_timeout_s,
+          {"s", 1.0, 3600.0, "UNDOCK time limit (then FAILED)"});
+  v.param("departed_action", p.departed_action,
+          "DEPARTED: thrusters neutral, or hold the stand-off on the servo", {"neutral", "hold"});
+}
+
 void describe(hal::ParamVisitor& v, MissionParams& p) {
+  v.param("kind", p.kind,
+          "dock: end at DOCKED; recharge: then hold seated while charging, undock and depart",
+          {"dock", "recharge"});
+  v.section("recharge", "the recharging mission after DOCKED",
+            [&p](hal::ParamVisitor& s) { describe(s, p.recharge); });
   v.param("min_fitness", p.min_fitness,
           {"-", 0.0, 1.0, "estimate fitness at or above which the marker counts as recognised"});
   v.param("acquire_frames", p.acquire_frames,

@@ -103,9 +103,48 @@ struct ControlParams {
 
 void describe(hal::ParamVisitor& v, ControlParams& p);
 
+// The recharging mission after DOCKED: hold seated while charging, then back out and hand over.
+// Axial errors are those of the probe tip along the docking axis against the docked pose (the
+// probe at the socket mouth; negative: short of it).
+struct RechargeParams {
+  // CHARGING: push along the docking axis (feed-forward) while the servo holds lateral and yaw.
+  double charge_push_n = 3.0;
+  // Charge complete: SoC at or above soc_complete_fraction, or the charge current below
+  // complete_current_a once the SoC is past complete_min_soc_fraction (the charger's taper).
+  double soc_complete_fraction = 0.95;
+  double complete_current_a = 1.0;
+  double complete_min_soc_fraction = 0.85;
+  double charge_timeout_s = 14400.0;  // CHARGING time limit, then UNDOCK
+  // Unseated: the seat contact lost, or vision seeing the probe this far short of the socket
+  // mouth, for unseat_confirm_s -> DOCK again (a re-seat) up to max_reseats times.
+  double unseat_confirm_s = 0.3;
+  double vision_unseat_m = 0.01;
+  int max_reseats = 3;
+  // Seated, but the charger's current below no_current_a for no_current_s -> UNDOCK.
+  double no_current_a = 0.5;
+  double no_current_s = 3.0;
+  // The horizontal force the hold commands above overload_force_n for overload_s: the current is
+  // beyond what the hold resists -> UNDOCK before being dragged off.
+  double overload_force_n = 30.0;
+  double overload_s = 2.0;
+  // UNDOCK: the set-point backs out along the docking axis at undock_speed_mps to the stand-off
+  // (standoff_m); blind, push back with undock_push_n. Done when the marker is seen there.
+  double undock_speed_mps = 0.08;
+  double undock_push_n = 10.0;
+  double undock_timeout_s = 30.0;
+  // DEPARTED: "neutral" (hand the vehicle back with the thrusters off) or "hold" (servo at the
+  // stand-off).
+  std::string departed_action = "neutral";
+};
+
+void describe(hal::ParamVisitor& v, RechargeParams& p);
+
 // The docking mission's thresholds. Lateral and axial errors are those of the vehicle's control
 // point (the probe tip) in the marker frame: lateral = off the docking axis, axial = along it.
 struct MissionParams {
+  // "dock": the mission ends at DOCKED. "recharge": DOCKED goes on to CHARGING, UNDOCK, DEPARTED.
+  std::string kind = "dock";
+  RechargeParams recharge;
   // Recognition: fitness at or above this counts as seeing the marker.
   double min_fitness = 0.6;
   int acquire_frames = 3;  // consecutive recognised frames to leave SEARCH

@@ -12,8 +12,21 @@ namespace {
 
 double seconds(std::chrono::nanoseconds d) { return std::chrono::duration<double>(d).count(); }
 
+// States in which the servo's integral (the trim against the current) carries over.
 bool servo_state(MissionState s) {
-  return s == MissionState::approach || s == MissionState::align || s == MissionState::dock;
+  return s == MissionState::approach || s == MissionState::align || s == MissionState::dock ||
+         s == MissionState::charging || s == MissionState::undock || s == MissionState::departed;
+}
+
+// Starts or clears a condition's timer; true once it has held for `hold_s`.
+bool held_for(bool condition, std::chrono::nanoseconds now, std::chrono::nanoseconds& since,
+              double hold_s) {
+  if (!condition) {
+    since = std::chrono::nanoseconds{-1};
+    return false;
+  }
+  if (since.count() < 0) since = now;
+  return seconds(now - since) >= hold_s;
 }
 
 }  // namespace
@@ -34,6 +47,12 @@ const char* to_string(MissionState s) {
       return "abort";
     case MissionState::failed:
       return "failed";
+    case MissionState::charging:
+      return "charging";
+    case MissionState::undock:
+      return "undock";
+    case MissionState::departed:
+      return "departed";
   }
   return "?";
 }
@@ -52,6 +71,9 @@ Mission::Mission(const MissionParams& params, const Eigen::Isometry3d& T_body_cl
       T_docked_(T_cl_marker_docked),
       T_standoff_(offset_along_docking_axis(T_cl_marker_docked, params.standoff_m)),
       control_point_body_m_(control_point_body_m) {
+  recharge_ = p_.kind == "recharge";
+  departed_hold_ = p_.recharge.departed_action == "hold";
+  dock_start_back_m_ = p_.standoff_m;
   cp_docked_marker_m_ = (T_body_cl_ * T_docked_).inverse() * control_point_body_m_;
   // Blind, the vehicle pushes along the docking axis as it lies when docked: the servo has just
   // aligned it, and one noisy last estimate would be a worse guess.
@@ -83,8 +105,22 @@ bool Mission::pop_event(MissionEvent& event) {
   return true;
 }
 
+bool Mission::finished() const {
+  switch (state_) {
+    case MissionState::docked:
+      return !recharge_;
+    case MissionState::departed:
+    case MissionState::failed:
+      return true;
+    case MissionState::abort:
+      return final_abort_ && backed_off_;
+    default:
+      return false;
+  }
+}
+
 void Mission::enter(MissionState to, std::chrono::nanoseconds now, const char* reason) {
-  if (to == MissionState::abort) ++aborts_;
+  if (to == MissionState::abort && !final_abort_) ++aborts_;
   push_event({now, state_, to, reason, aborts_});
   state_ = to;
   entered_ = now;
@@ -92,8 +128,14 @@ void Mission::enter(MissionState to, std::chrono::nanoseconds now, const char* r
   contact_frames_ = 0;
   dock_off_frames_ = 0;
   blind_since_ = std::chrono::nanoseconds{-1};
+  unseated_since_ = no_current_since_ = overload_since_ = std::chrono::nanoseconds{-1};
+  backed_off_ = false;
   if (to == MissionState::search) seen_frames_ = 0;
-  if (to == MissionState::abort && aborts_ > p_.max_retries) {
+  if (to == MissionState::charging && !charging_started_) {
+    charging_started_ = true;
+    charging_since_ = now;
+  }
+  if (to == MissionState::abort && !final_abort_ && aborts_ > p_.max_retries) {
     push_event({now, state_, MissionState::failed, "retries exhausted", aborts_});
     state_ = MissionState::failed;
   }
@@ -105,6 +147,9 @@ void Mission::restart(std::chrono::nanoseconds now) {
   started_ = true;
   servo_was_active_ = false;
   have_last_ = false;
+  charging_started_ = charge_complete_ = abort_after_undock_ = final_abort_ = false;
+  reseats_ = 0;
+  dock_start_back_m_ = p_.standoff_m;
 }
 
 MissionOutput Mission::update(const MissionInput& in) {
@@ -170,6 +215,7 @@ MissionOutput Mission::update(const MissionInput& in) {
       if (lost) {
         enter(MissionState::abort, in.now, "marker lost");
       } else if (hold_frames_ >= p_.align_hold_frames) {
+        dock_start_back_m_ = p_.standoff_m;
         enter(MissionState::dock, in.now, "aligned");
       } else if (t_state > p_.align_timeout_s) {
         enter(MissionState::abort, in.now, "align timed out");
@@ -206,11 +252,37 @@ MissionOutput Mission::update(const MissionInput& in) {
       break;
     }
     case MissionState::abort:
-      if (t_state >= p_.abort_backoff_s) enter(MissionState::search, in.now, "backed off");
+      if (t_state >= p_.abort_backoff_s) {
+        backed_off_ = true;
+        if (!final_abort_) enter(MissionState::search, in.now, "backed off");
+      }
       break;
+    case MissionState::charging:
+      charging(in, seen_dock, err);
+      break;
+    case MissionState::undock: {
+      const RechargeParams& r = p_.recharge;
+      if (seen_dock && err.axial_m <= -(p_.standoff_m - p_.approach_axial_m)) {
+        if (abort_after_undock_) {
+          final_abort_ = true;
+          enter(MissionState::abort, in.now, "undocked after the re-seats ran out");
+        } else {
+          enter(MissionState::departed, in.now, "clear of the station, marker in view");
+        }
+      } else if (t_state > r.undock_timeout_s) {
+        enter(MissionState::failed, in.now, "undock timed out");
+      }
+      break;
+    }
     case MissionState::docked:
     case MissionState::failed:
+    case MissionState::departed:
       break;
+  }
+  // The recharging mission does not stop at DOCKED: the hold starts in the same tick, so the
+  // thrusters never let go of the seat.
+  if (recharge_ && state_ == MissionState::docked) {
+    enter(MissionState::charging, in.now, charging_started_ ? "re-seated" : "seated: charging");
   }
 
   // Outputs of the state we are in after this tick's transition.
@@ -227,11 +299,15 @@ MissionOutput Mission::update(const MissionInput& in) {
       out.use_override = !seen;  // brief loss: hold (feed-forward only)
       break;
     case MissionState::dock: {
-      const double back = std::max(p_.standoff_m - p_.dock_speed_mps * seconds(in.now - entered_),
-                                   -p_.dock_overshoot_m);
+      const double back =
+          std::max(dock_start_back_m_ - p_.dock_speed_mps * seconds(in.now - entered_),
+                   -p_.dock_overshoot_m);
       out.T_cl_marker_desired = offset_along_docking_axis(T_docked_, back);
       out.servo_active = seen_dock;
       out.use_override = !seen_dock;
+      // A re-seat keeps pressing while it slides back in.
+      if (charging_started_)
+        out.push_body.head<3>() = docked_axis_body_ * p_.recharge.charge_push_n;
       if (!seen_dock && blind_since_.count() >= 0) {
         out.wrench_override_body.head<3>() = docked_axis_body_ * p_.dock_blind_push_n;
       }
@@ -239,7 +315,41 @@ MissionOutput Mission::update(const MissionInput& in) {
     }
     case MissionState::abort:
       out.use_override = true;
-      out.wrench_override_body[0] = -p_.abort_backoff_force_n;
+      if (final_abort_ && backed_off_) {
+        out.thrusters_enabled = false;
+      } else {
+        out.wrench_override_body[0] = -p_.abort_backoff_force_n;
+      }
+      break;
+    case MissionState::charging:
+      // Lateral and yaw on the servo; along the axis the set-point follows the probe, so only the
+      // push (and the integral's trim carried from the dock) presses it into the seat.
+      out.T_cl_marker_desired =
+          seen_dock ? offset_along_docking_axis(T_docked_, -err.axial_m) : T_docked_;
+      out.servo_active = seen_dock;
+      out.use_override = !seen_dock;
+      out.push_body.head<3>() = docked_axis_body_ * p_.recharge.charge_push_n;
+      break;
+    case MissionState::undock: {
+      const double back =
+          std::min(undock_start_back_m_ + p_.recharge.undock_speed_mps * seconds(in.now - entered_),
+                   p_.standoff_m);
+      out.T_cl_marker_desired = offset_along_docking_axis(T_docked_, back);
+      out.servo_active = seen_dock;
+      out.use_override = !seen_dock;
+      if (!seen_dock) {
+        out.wrench_override_body.head<3>() = -docked_axis_body_ * p_.recharge.undock_push_n;
+      }
+      break;
+    }
+    case MissionState::departed:
+      if (departed_hold_) {
+        out.T_cl_marker_desired = T_standoff_;
+        out.servo_active = seen;
+        out.use_override = !seen;
+      } else {
+        out.thrusters_enabled = false;
+      }
       break;
     case MissionState::docked:
     case MissionState::failed:
@@ -252,6 +362,49 @@ MissionOutput Mission::update(const MissionInput& in) {
   if (out.servo_active) servo_was_active_ = true;
   if (!servo_state(state_)) servo_was_active_ = false;
   return out;
+}
+
+void Mission::charging(const MissionInput& in, bool seen_dock, const Errors& err) {
+  const RechargeParams& r = p_.recharge;
+  const bool vision_out = seen_dock && err.axial_m < -r.vision_unseat_m;
+  const bool contact_lost = p_.contact_switch && !in.contact;
+  const bool unseated =
+      held_for(contact_lost || vision_out, in.now, unseated_since_, r.unseat_confirm_s);
+  const bool past_taper = in.battery_valid && in.soc_fraction >= r.complete_min_soc_fraction;
+  const bool full = in.battery_valid && in.soc_fraction >= r.soc_complete_fraction;
+  const bool tapered = past_taper && in.charger_valid && in.charge_current_a < r.complete_current_a;
+  const bool no_current = held_for(in.charger_valid && !past_taper && !contact_lost &&
+                                       !vision_out && in.charge_current_a < r.no_current_a,
+                                   in.now, no_current_since_, r.no_current_s);
+  const bool overload =
+      held_for(in.hold_force_n > r.overload_force_n, in.now, overload_since_, r.overload_s);
+  if (in.undock_requested) {
+    start_undock(in.now, "operator command");
+  } else if (overload) {
+    start_undock(in.now, "current beyond what the hold resists");
+  } else if (unseated && reseats_ < r.max_reseats) {
+    ++reseats_;
+    // From where the probe is now (or the socket mouth when it is not seen), not the stand-off.
+    dock_start_back_m_ =
+        std::clamp(have_last_ ? -last_axial_m_ : 0.0, -p_.dock_overshoot_m, p_.standoff_m);
+    enter(MissionState::dock, in.now, "probe unseated: re-seat");
+  } else if (unseated) {
+    abort_after_undock_ = true;
+    start_undock(in.now, "probe unseated: re-seats exhausted");
+  } else if (full || (tapered && !contact_lost)) {
+    charge_complete_ = true;
+    start_undock(in.now, full ? "charge complete (state of charge)" : "charge complete (current)");
+  } else if (no_current) {
+    start_undock(in.now, "charger reports no current");
+  } else if (seconds(in.now - charging_since_) > r.charge_timeout_s) {
+    start_undock(in.now, "charge time limit");
+  }
+}
+
+void Mission::start_undock(std::chrono::nanoseconds now, const char* reason) {
+  undock_start_back_m_ =
+      std::clamp(have_last_ ? -last_axial_m_ : 0.0, -p_.dock_overshoot_m, p_.standoff_m);
+  enter(MissionState::undock, now, reason);
 }
 
 }  // namespace rovctl::control

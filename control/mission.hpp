@@ -1,5 +1,6 @@
 // The docking mission: SEARCH -> APPROACH -> ALIGN -> DOCK -> DOCKED, with ABORT (back off, search
-// again, a bounded number of times) and FAILED. Decides what the servo aims at and when the
+// again, a bounded number of times) and FAILED; the recharging mission goes on from DOCKED to
+// CHARGING (hold seated) -> UNDOCK -> DEPARTED. Decides what the servo aims at and when the
 // thrusters may push; every transition is queued as an event. The tick allocates nothing.
 #pragma once
 
@@ -14,7 +15,20 @@
 
 namespace rovctl::control {
 
-enum class MissionState { search, approach, align, dock, docked, abort, failed };
+// Appended states keep the ids telemetry has always recorded.
+enum class MissionState {
+  search,
+  approach,
+  align,
+  dock,
+  docked,
+  abort,
+  failed,
+  charging,
+  undock,
+  departed
+};
+constexpr int kMissionStateCount = 10;
 const char* to_string(MissionState s);
 
 struct MissionInput {
@@ -27,6 +41,14 @@ struct MissionInput {
   double fitness = 0.0;  // the estimate's fitness (also gated by min_fitness)
   Eigen::Isometry3d T_cl_marker = Eigen::Isometry3d::Identity();
   bool contact = false;  // contact switch if the vehicle has one; the sim reports it
+  // The recharging mission's inputs: battery and charger (from hal::Sensors), the horizontal
+  // force the hold commanded last tick, and the operator's request to end the charge.
+  bool charger_valid = false;
+  double charge_current_a = 0.0;
+  bool battery_valid = false;
+  double soc_fraction = 0.0;
+  double hold_force_n = 0.0;
+  bool undock_requested = false;
 };
 
 // The application's contract: thrusters_enabled false -> neutral. Else if servo_active:
@@ -41,6 +63,8 @@ struct MissionOutput {
   Eigen::Isometry3d T_cl_marker_desired = Eigen::Isometry3d::Identity();
   Wrench wrench_override_body = Wrench::Zero();
   bool use_override = false;
+  // Added to the wrench whenever the thrusters are enabled (the seated hold's push).
+  Wrench push_body = Wrench::Zero();
   bool thrusters_enabled = true;
   // The control point's error against the docking axis, when the marker is seen this tick:
   // lateral = off the axis, axial = along it (negative: short of the docked position), yaw of
@@ -81,7 +105,12 @@ class Mission {
   void restart(std::chrono::nanoseconds now);
 
   MissionState state() const { return state_; }
+  // Nothing more will happen: DOCKED (docking mission), DEPARTED, FAILED, or the final ABORT of
+  // a recharge given up after its re-seats.
+  bool finished() const;
   int aborts() const { return aborts_; }
+  int reseats() const { return reseats_; }
+  bool charge_complete() const { return charge_complete_; }
   const Eigen::Isometry3d& standoff_T_cl_marker() const { return T_standoff_; }
   const Eigen::Isometry3d& docked_T_cl_marker() const { return T_docked_; }
 
@@ -96,6 +125,8 @@ class Mission {
   };
   Errors errors(const Eigen::Isometry3d& T_cl_marker) const;
   void enter(MissionState to, std::chrono::nanoseconds now, const char* reason);
+  void charging(const MissionInput& in, bool seen_dock, const Errors& err);
+  void start_undock(std::chrono::nanoseconds now, const char* reason);
   void push_event(const MissionEvent& e);
 
   MissionParams p_;
@@ -120,6 +151,21 @@ class Mission {
   double last_axial_m_ = 0.0;
   Eigen::Vector3d docked_axis_body_ = Eigen::Vector3d::UnitX();  // docking axis when docked
   std::chrono::nanoseconds blind_since_{-1};
+  // Recharging.
+  bool recharge_ = false;
+  bool charging_started_ = false;
+  bool charge_complete_ = false;
+  bool abort_after_undock_ = false;  // re-seats exhausted: UNDOCK ends in the final ABORT
+  bool final_abort_ = false;
+  bool backed_off_ = false;  // ABORT's back-off time is over
+  bool departed_hold_ = false;
+  int reseats_ = 0;
+  double dock_start_back_m_ = 0.0;    // DOCK's set-point starts this far back (re-seat: from here)
+  double undock_start_back_m_ = 0.0;  // UNDOCK's set-point starts here
+  std::chrono::nanoseconds charging_since_{0};  // the first CHARGING entry (the time limit)
+  std::chrono::nanoseconds unseated_since_{-1};
+  std::chrono::nanoseconds no_current_since_{-1};
+  std::chrono::nanoseconds overload_since_{-1};
 
   std::array<MissionEvent, kEventCapacity> events_{};
   std::size_t event_head_ = 0;

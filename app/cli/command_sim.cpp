@@ -15,15 +15,19 @@
 #include "app/tools/docking_trial.hpp"
 #include "app/tools/sim_report.hpp"
 #include "hal/mock/render_scenario.hpp"
+#include "hal/mock/sim_params.hpp"
 #include "hal/mock/trial_generator.hpp"
 
 namespace rovctl::app {
+namespace {
+constexpr double kRechargeMaxTimeS = 400.0;
+}  // namespace
 
 int command_sim(const Words& words) {
-  const CliArgs args = CliArgs::parse(
-      "sim", words,
-      {"--config", "--trials", "--seed", "--out", "--jobs", "--max-time", "--plots", "--scenario"},
-      {"--realtime", "--json", "--verbose"});
+  const CliArgs args = CliArgs::parse("sim", words,
+                                      {"--config", "--trials", "--seed", "--out", "--jobs",
+                                       "--max-time", "--plots", "--scenario", "--mission"},
+                                      {"--realtime", "--json", "--verbose"});
   const std::string config_file =
       args.has("--config") ? args.get("--config") : default_config_path();
   const int trials = static_cast<int>(args.get_int("--trials", 1, 1, 100000));
@@ -44,6 +48,19 @@ int command_sim(const Words& words) {
   const int jobs = static_cast<int>(args.get_int("--jobs", default_jobs, 1, 64));
 
   AppConfig config = load_app_config(config_file);
+  if (args.has("--mission")) {
+    const std::string mission = args.get("--mission");
+    if (mission != "dock" && mission != "recharge") {
+      throw UsageError("rovctl sim: --mission must be dock or recharge, got '" + mission + "'");
+    }
+    config.mission.kind = mission;
+  }
+  if (config.mission.kind == "recharge") {
+    // The recharge trials dock into their own sea (current, tide, gusts) with the latch open, and
+    // need the time to charge and back out as well as to dock.
+    hal::mock::apply_recharge_sea(config.sim);
+    if (!args.has("--max-time")) options.max_time_s = kRechargeMaxTimeS;
+  }
   if (args.has("--scenario")) {
     // Overrides sim.scenario, checked here so that a typo is a usage error before any trial.
     const std::string scenario = args.get("--scenario");
@@ -79,9 +96,11 @@ int command_sim(const Words& words) {
       const TrialResult& r = results[static_cast<std::size_t>(i)];
       if (tty || !json) {
         std::cerr << (tty ? "\r" : "") << "trial " << i << ": "
-                  << (r.success  ? "docked"
-                      : r.docked ? "docked off tolerance"
-                                 : "not docked")
+                  << (r.recharge  ? (trial_recharged(r) ? "docked, charged, departed"
+                                                        : "recharge incomplete")
+                      : r.success ? "docked"
+                      : r.docked  ? "docked off tolerance"
+                                  : "not docked")
                   << " (" << r.final_state << ", " << r.sim_time_s << " s)  [" << finished << "/"
                   << trials << "]" << (tty ? "          " : "\n") << std::flush;
       }

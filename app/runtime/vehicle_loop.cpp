@@ -81,7 +81,6 @@ void VehicleLoop::queue(const LoopEvent& e) {
 }
 
 bool VehicleLoop::tick(const TickInfo& info) {
-  using control::MissionState;
   const std::chrono::nanoseconds now = info.deadline;
   ++ticks_;
   TelemetryRecord rec;
@@ -128,6 +127,14 @@ bool VehicleLoop::tick(const TickInfo& info) {
     const bool have_readings = sensors_ != nullptr && sensors_->read(readings_);
     if (have_readings) contact = readings_.dock_contact_valid && readings_.dock_contact;
     control::MissionInput in;
+    if (have_readings) {
+      in.charger_valid = readings_.charger_valid && std::isfinite(readings_.charge_current_a);
+      in.charge_current_a = readings_.charge_current_a;
+      in.battery_valid = readings_.battery_valid && std::isfinite(readings_.soc_fraction);
+      in.soc_fraction = readings_.soc_fraction;
+    }
+    in.hold_force_n = last_hold_force_n_;
+    in.undock_requested = undock_requested_.load(std::memory_order_relaxed);
     in.now = now;
     in.recognised = seen;
     in.full_view = seen && estimate_.ok;
@@ -148,6 +155,7 @@ bool VehicleLoop::tick(const TickInfo& info) {
         if (out.use_override) wrench += out.wrench_override_body;
         last_servo_time_ = std::chrono::nanoseconds{-1};
       }
+      wrench += out.push_body;
       // Roll and pitch from the IMU in every state: the vision servo only damps them, and a
       // tipped vehicle loses the marker.
       Eigen::Vector2d level_nm;
@@ -157,6 +165,8 @@ bool VehicleLoop::tick(const TickInfo& info) {
         wrench[4] = level_nm.y();
       }
     }
+    last_hold_force_n_ = out.thrusters_enabled ? wrench.head<2>().norm() : 0.0;
+    if (out.state != control::MissionState::charging) undock_requested_.store(false);
     control::FailsafeInput fs;
     fs.now = now;
     fs.grab = grab;
@@ -242,8 +252,7 @@ bool VehicleLoop::tick(const TickInfo& info) {
     }
   }
 
-  const bool ended =
-      out.state == MissionState::docked || out.state == MissionState::failed || failsafe_.tripped();
+  const bool ended = mission_.finished() || failsafe_.tripped();
   if (!ended) {
     ended_at_ = std::chrono::nanoseconds{-1};
     return true;

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <Eigen/Geometry>
+#include <atomic>
 #include <chrono>
 #include <cstdint>
 #include <memory>
@@ -54,6 +55,8 @@ class VehicleLoop {
   bool tick(const TickInfo& info);
   // Neutral and disarm; safe to call more than once.
   void disarm();
+  // The operator ends the charge: the next tick in CHARGING starts UNDOCK. Any thread.
+  void request_undock() { undock_requested_.store(true); }
 
   // Events queued by tick(); pop from the logging side (the same thread in simulation).
   bool pop_event(LoopEvent& e) { return events_.try_pop(e); }
@@ -94,6 +97,8 @@ class VehicleLoop {
   bool armed_ = false;
   bool disarmed_by_failsafe_ = false;
   std::chrono::nanoseconds last_servo_time_{-1};
+  double last_hold_force_n_ = 0.0;  // horizontal force commanded last tick (the hold's effort)
+  std::atomic<bool> undock_requested_{false};
   std::chrono::nanoseconds ended_at_{-1};
   std::uint64_t ticks_ = 0;
   std::uint64_t recognised_ticks_ = 0;

@@ -7,6 +7,7 @@
 #include <iostream>
 
 #include "app/runtime/vehicle.hpp"
+#include "hal/mock/battery_model.hpp"
 #include "hal/primitives/percentile.hpp"
 
 namespace rovctl::app {
@@ -40,6 +41,10 @@ bool trial_docked(const TrialResult& r) {
          std::abs(r.yaw_error_deg) <= kSuccessYawDeg;
 }
 
+bool trial_recharged(const TrialResult& r) {
+  return trial_docked(r) && r.charge.charged && r.charge.departed && r.charge.undock_marker_in_view;
+}
+
 TrialResult run_docking_trial(const AppConfig& config, const hal::StereoRig& rig,
                               const hal::mock::TrialConditions& conditions,
                               const TrialOptions& options) {
@@ -65,6 +70,15 @@ TrialResult run_docking_trial(const AppConfig& config, const hal::StereoRig& rig
   estimate_errors_mm.reserve(max_ticks + 1);
   double estimator_ms_sum = 0.0;
   bool captured = false;
+  using control::MissionState;
+  result.recharge = config.mission.kind == "recharge";
+  RechargeResult& charge = result.charge;
+  charge.soc_start = world.charge().soc_fraction;
+  if (options.keep_records && result.recharge) charge.samples.reserve(max_ticks + 1);
+  const double tick_s = std::chrono::duration<double>(vehicle.scheduler().period()).count();
+  double thruster_wh_last = world.charge().thruster_wh;
+  bool charge_phase_over = false;
+  double unseated_run_s = 0.0;
 
   // Logging, truth and bookkeeping after each tick: the simulation's non-real-time side. The
   // ring is drained every tick, so a record is this tick's and the world's truth is its truth.
@@ -72,6 +86,7 @@ TrialResult run_docking_trial(const AppConfig& config, const hal::StereoRig& rig
     LoopEvent e;
     while (loop.pop_event(e)) {
       result.events.push_back(format_event(e));
+      if (!e.failsafe && e.to == control::MissionState::undock) result.charge.end_reason = e.reason;
       if (options.log_events)
         std::cerr << "trial " << conditions.index << ": " << result.events.back() << "\n";
     }
@@ -84,6 +99,46 @@ TrialResult run_docking_trial(const AppConfig& config, const hal::StereoRig& rig
       if (options.keep_records) result.records.push_back(r);
     }
     const auto& d = world.docking();
+    if (result.recharge) {
+      const control::Mission& m = loop.mission();
+      const MissionState st = m.state();
+      const auto& c = world.charge();
+      if (st == MissionState::charging) charge.charging_reached = true;
+      if (st == MissionState::undock || st == MissionState::departed || st == MissionState::failed)
+        charge_phase_over = charge_phase_over || charge.charging_reached;
+      if (charge.charging_reached && !charge_phase_over) {
+        charge.hold_wh += c.thruster_wh - thruster_wh_last;
+      }
+      thruster_wh_last = c.thruster_wh;
+      if (st == MissionState::charging) {
+        charge.charging_physics_s += tick_s;
+        if (d.seated) {
+          charge.seated_physics_s += tick_s;
+          charge.seated_s += tick_s * config.sim.recharge.seated_time_scale;
+          unseated_run_s = 0.0;
+        } else {
+          unseated_run_s += tick_s;
+          charge.unseated_unnoticed_max_s =
+              std::max(charge.unseated_unnoticed_max_s, unseated_run_s);
+        }
+      } else {
+        unseated_run_s = 0.0;
+      }
+      if (st == MissionState::departed && !charge.departed) {
+        charge.departed = true;
+        charge.undock_clearance_m = d.axial_distance_m;
+        charge.undock_marker_in_view = loop.last_estimate().recognised;
+      }
+      if (options.keep_records) {
+        const Eigen::Vector3d w = world.current().velocity_world_mps();
+        charge.samples.push_back(
+            {std::chrono::duration<double>(world.time()).count(), c.soc_fraction,
+             c.charge_current_a,
+             hal::mock::thruster_power_w(world.thrusters(),
+                                         config.sim.recharge.battery.thruster_power_w_per_n1_5),
+             std::hypot(w.x(), w.y()), d.seated});
+      }
+    }
     if (d.docked && !captured) {
       captured = true;
       result.time_to_dock_s = std::chrono::duration<double>(d.docked_at).count();
@@ -102,7 +157,18 @@ TrialResult run_docking_trial(const AppConfig& config, const hal::StereoRig& rig
   drain();
 
   result.docked = world.docking().docked;
-  result.mission_docked = loop.mission().state() == control::MissionState::docked;
+  // In the recharging mission DOCKED is passed through on the way to CHARGING.
+  result.mission_docked = loop.mission().state() == control::MissionState::docked ||
+                          (result.recharge && charge.charging_reached);
+  if (result.recharge) {
+    charge.charged = loop.mission().charge_complete();
+    charge.reseats = loop.mission().reseats();
+    charge.charged_wh = world.charge().charged_wh;
+    charge.hold_fraction = charge.charged_wh > 0.0 ? charge.hold_wh / charge.charged_wh : 0.0;
+    charge.contact_fraction =
+        charge.charging_physics_s > 0.0 ? charge.seated_physics_s / charge.charging_physics_s : 0.0;
+    charge.soc_end = world.charge().soc_fraction;
+  }
   result.success = trial_docked(result);
   result.sim_time_s = std::chrono::duration<double>(world.time()).count();
   result.final_state = control::to_string(loop.mission().state());

@@ -22,6 +22,39 @@ struct TrialOptions {
   bool log_events = false;    // print mission/failsafe events to stderr live
 };
 
+// One sample per tick of the recharging side, for the plots (kept with keep_records).
+struct ChargeSample {
+  double time_s = 0.0;
+  double soc_fraction = 0.0;
+  double charge_current_a = 0.0;
+  double thruster_power_w = 0.0;   // electrical, from the thrusters' thrust
+  double current_speed_mps = 0.0;  // the water's horizontal speed at the vehicle
+  bool seated = false;
+};
+
+// The recharging mission's figures for one trial, from the simulator's truth. Times and energies
+// in battery time (the charge sped up by sim.recharge.seated_time_scale) unless named _physics_.
+struct RechargeResult {
+  bool charging_reached = false;
+  bool charged = false;                   // the mission ended the charge as complete
+  bool departed = false;                  // the mission reached DEPARTED
+  std::string end_reason;                 // why the charge ended (the event into UNDOCK)
+  double charging_physics_s = 0.0;        // ticks in CHARGING
+  double seated_physics_s = 0.0;          // of those, seated (truth)
+  double seated_s = 0.0;                  // seated while charging, battery time
+  double contact_fraction = 0.0;          // seated_physics_s / charging_physics_s
+  double unseated_unnoticed_max_s = 0.0;  // longest unseated stretch still in CHARGING
+  int reseats = 0;
+  double hold_wh = 0.0;        // thruster energy from the first CHARGING to UNDOCK
+  double charged_wh = 0.0;     // put in by the charger
+  double hold_fraction = 0.0;  // hold_wh / charged_wh (0 when nothing was charged)
+  double soc_start = 0.0;
+  double soc_end = 0.0;
+  double undock_clearance_m = -1.0;    // probe tip back from the socket mouth on DEPARTED
+  bool undock_marker_in_view = false;  // the marker recognised in the tick DEPARTED began
+  std::vector<ChargeSample> samples;
+};
+
 struct TrialResult {
   hal::mock::TrialConditions conditions;
   bool docked = false;          // the simulator's verdict: captured, centred, aligned
@@ -43,7 +76,13 @@ struct TrialResult {
   double estimate_error_mm_median = -1.0;  // while recognised
   std::vector<std::string> events;
   std::vector<TelemetryRecord> records;  // when keep_records
+  bool recharge = false;                 // mission.kind recharge
+  RechargeResult charge;
 };
+
+// The recharging mission's verdict: docked (as trial_docked), charged to completion, departed
+// clear of the station with the marker in view.
+bool trial_recharged(const TrialResult& r);
 
 // Tolerances at contact that count as a successful dock (the targets).
 constexpr double kSuccessLateralMm = 10.0;

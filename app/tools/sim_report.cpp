@@ -23,6 +23,42 @@ double percentile_or_none(const std::vector<double>& v, double p) {
   return v.empty() ? -1.0 : hal::percentile(v, p);
 }
 
+void summarise_recharge(const std::vector<TrialResult>& results, SimSummary& s) {
+  std::vector<double> contact, seated_h, hold_wh, charged_wh, hold_fraction, clearance;
+  for (const TrialResult& r : results) {
+    if (!r.recharge) continue;
+    s.recharge = true;
+    const RechargeResult& c = r.charge;
+    if (trial_recharged(r)) ++s.recharged;
+    if (c.charged) ++s.charged;
+    if (c.departed) ++s.departed;
+    if (c.departed && c.undock_marker_in_view) ++s.undock_clear;
+    s.reseats += c.reseats;
+    s.unseated_unnoticed_max_s = std::max(s.unseated_unnoticed_max_s, c.unseated_unnoticed_max_s);
+    if (c.charging_reached) {
+      contact.push_back(c.contact_fraction);
+      seated_h.push_back(c.seated_s / 3600.0);
+      hold_wh.push_back(c.hold_wh);
+      charged_wh.push_back(c.charged_wh);
+      if (c.charged_wh > 0.0) hold_fraction.push_back(c.hold_fraction);
+    }
+    if (c.departed) clearance.push_back(c.undock_clearance_m);
+  }
+  if (!s.recharge) return;
+  s.recharge_rate = s.trials > 0 ? static_cast<double>(s.recharged) / s.trials : 0.0;
+  s.contact_fraction_min =
+      contact.empty() ? -1.0 : *std::min_element(contact.begin(), contact.end());
+  s.contact_fraction_median = percentile_or_none(contact, 0.5);
+  s.seated_h_median = percentile_or_none(seated_h, 0.5);
+  s.hold_wh_median = percentile_or_none(hold_wh, 0.5);
+  s.charged_wh_median = percentile_or_none(charged_wh, 0.5);
+  s.hold_fraction_median = percentile_or_none(hold_fraction, 0.5);
+  s.hold_fraction_max =
+      hold_fraction.empty() ? -1.0 : *std::max_element(hold_fraction.begin(), hold_fraction.end());
+  s.undock_clearance_m_min =
+      clearance.empty() ? -1.0 : *std::min_element(clearance.begin(), clearance.end());
+}
+
 }  // namespace
 
 SimSummary summarise(const std::vector<TrialResult>& results) {
@@ -51,6 +87,7 @@ SimSummary summarise(const std::vector<TrialResult>& results) {
   s.final_yaw_error_deg_p95 = percentile_or_none(yaw, 0.95);
   s.estimator_ms_mean = s.trials > 0 ? estimator_ms / s.trials : 0.0;
   s.estimate_error_mm_median = percentile_or_none(est_err, 0.5);
+  summarise_recharge(results, s);
   return s;
 }
 
@@ -69,8 +106,27 @@ std::string summary_json(const SimSummary& s) {
       .field("ticks", static_cast<long>(s.ticks))
       .field("tick_jitter_ms_max", s.tick_jitter_ms_max)
       .field("estimator_ms_mean", s.estimator_ms_mean)
-      .field("estimate_error_mm_median", s.estimate_error_mm_median)
-      .end_object();
+      .field("estimate_error_mm_median", s.estimate_error_mm_median);
+  if (s.recharge) {
+    j.begin_object("recharge")
+        .field("recharged", s.recharged)
+        .field("recharge_rate", s.recharge_rate)
+        .field("charged", s.charged)
+        .field("departed", s.departed)
+        .field("undock_clear_marker_in_view", s.undock_clear)
+        .field("contact_fraction_min", s.contact_fraction_min)
+        .field("contact_fraction_median", s.contact_fraction_median)
+        .field("unseated_unnoticed_max_s", s.unseated_unnoticed_max_s)
+        .field("reseats", s.reseats)
+        .field("seated_h_median", s.seated_h_median)
+        .field("hold_wh_median", s.hold_wh_median)
+        .field("charged_wh_median", s.charged_wh_median)
+        .field("hold_fraction_median", s.hold_fraction_median)
+        .field("hold_fraction_max", s.hold_fraction_max)
+        .field("undock_clearance_m_min", s.undock_clearance_m_min)
+        .end_object();
+  }
+  j.end_object();
   return j.str();
 }
 
@@ -97,6 +153,34 @@ std::string summary_text(const SimSummary& s, const std::vector<TrialResult>& re
       static_cast<unsigned long long>(s.ticks), static_cast<unsigned long long>(s.overruns),
       s.tick_jitter_ms_p99, s.tick_jitter_ms_max, s.estimator_ms_mean, s.estimate_error_mm_median);
   o << line;
+  if (s.recharge) {
+    o << "\ntrial  result      end of charge                          seated_h  contact  "
+         "unseated_max_s  reseats  hold_Wh  charged_Wh  hold_%  soc       clearance_m  marker\n";
+    for (const TrialResult& r : results) {
+      const RechargeResult& c = r.charge;
+      std::snprintf(line, sizeof(line),
+                    "%5d  %-10s  %-37.37s  %8.2f  %7.4f  %14.2f  %7d  %7.1f  %10.1f  %6.2f  "
+                    "%.2f-%.2f  %11.3f  %s\n",
+                    r.conditions.index, trial_recharged(r) ? "RECHARGED" : r.final_state.c_str(),
+                    c.end_reason.empty() ? "-" : c.end_reason.c_str(), c.seated_s / 3600.0,
+                    c.contact_fraction, c.unseated_unnoticed_max_s, c.reseats, c.hold_wh,
+                    c.charged_wh, 100.0 * c.hold_fraction, c.soc_start, c.soc_end,
+                    c.undock_clearance_m, c.undock_marker_in_view ? "in view" : "-");
+      o << line;
+    }
+    std::snprintf(
+        line, sizeof(line),
+        "\nrecharged (docked, charged, departed) %d of %d (%.0f %%)  charged %d  "
+        "departed %d  clear with marker in view %d\ncontact held min %.4f (median "
+        "%.4f) of the charging time  longest unnoticed unseat %.2f s  re-seats %d\n"
+        "seated median %.2f h  hold energy median %.1f Wh of %.1f Wh charged  hold/charged "
+        "median %.2f %% (max %.2f %%)  undock clearance min %.3f m\n",
+        s.recharged, s.trials, 100.0 * s.recharge_rate, s.charged, s.departed, s.undock_clear,
+        s.contact_fraction_min, s.contact_fraction_median, s.unseated_unnoticed_max_s, s.reseats,
+        s.seated_h_median, s.hold_wh_median, s.charged_wh_median, 100.0 * s.hold_fraction_median,
+        100.0 * s.hold_fraction_max, s.undock_clearance_m_min);
+    o << line;
+  }
   return o.str();
 }
 
@@ -129,6 +213,16 @@ void plot_trial(const TrialResult& trial, const std::string& png_path) {
                 trial.conditions.current_mean_world_mps.norm(),
                 trial.success ? "DOCKED" : trial.final_state.c_str(), trial.lateral_error_mm,
                 trial.yaw_error_deg, trial.time_to_dock_s);
+  if (trial.recharge) {
+    const RechargeResult& c = trial.charge;
+    std::snprintf(title, sizeof(title),
+                  "Recharge trial %d: start %.2f m, current %.3f m/s -> %s (docked %.1f s, seated "
+                  "%.2f h, hold %.1f Wh of %.1f Wh charged, re-seats %d)",
+                  trial.conditions.index, trial.conditions.distance_m,
+                  trial.conditions.current_mean_world_mps.norm(),
+                  trial_recharged(trial) ? "RECHARGED" : trial.final_state.c_str(),
+                  trial.time_to_dock_s, c.seated_s / 3600.0, c.hold_wh, c.charged_wh, c.reseats);
+  }
   Plot plot(title, 1400);
   auto& p1 = plot.add_panel("Marker position in the left camera: estimate vs truth", "time [s]",
                             "position [m]");
@@ -152,10 +246,29 @@ void plot_trial(const TrialResult& trial, const std::string& png_path) {
   auto& p6 = plot.add_panel("Mission state", "time [s]", "", 260);
   p6.step("state", t, state);
   std::vector<std::pair<double, std::string>> cats;
-  for (int s = 0; s <= static_cast<int>(control::MissionState::failed); ++s) {
+  for (int s = 0; s < control::kMissionStateCount; ++s) {
     cats.emplace_back(s, control::to_string(static_cast<control::MissionState>(s)));
   }
   p6.y_categories(cats);
+  if (trial.recharge && !trial.charge.samples.empty()) {
+    std::vector<double> ct, soc, amps, watts, speed, seated;
+    for (const ChargeSample& c : trial.charge.samples) {
+      ct.push_back(c.time_s);
+      soc.push_back(100.0 * c.soc_fraction);
+      amps.push_back(c.charge_current_a);
+      watts.push_back(c.thruster_power_w);
+      speed.push_back(100.0 * c.current_speed_mps);
+      seated.push_back(c.seated ? 1.0 : 0.0);
+    }
+    auto& p7 = plot.add_panel("Battery and charger (battery time runs faster while seated)",
+                              "time [s]", "[%] / [A]");
+    p7.line("state of charge [%]", ct, soc).line("charge current [A]", ct, amps);
+    auto& p8 =
+        plot.add_panel("The hold: thruster power, water current, seat", "time [s]", "[W] / [cm/s]");
+    p8.line("thruster power [W]", ct, watts).line("current speed [cm/s]", ct, speed);
+    auto& p9 = plot.add_panel("Probe seated (truth)", "time [s]", "", 200);
+    p9.step("seated", ct, seated).y_categories({{0.0, "out"}, {1.0, "seated"}});
+  }
   plot.save_png(png_path);
 }
 
@@ -167,7 +280,14 @@ void write_sim_outputs(const std::string& dir, const std::vector<TrialResult>& r
            "success,captured,final_state,aborts,failsafe,time_to_dock_s,lateral_error_mm,yaw_error_"
            "deg,"
            "sim_time_s,ticks,overruns,jitter_p99_ms,estimator_ms_mean,recognised_fraction,"
-           "estimate_error_mm_median\n";
+           "estimate_error_mm_median";
+  const bool recharge = summary.recharge;
+  if (recharge) {
+    table << ",recharged,charged,departed,end_of_charge,seated_h,contact_fraction,"
+             "unseated_unnoticed_max_s,reseats,hold_wh,charged_wh,hold_fraction,soc_start,soc_end,"
+             "undock_clearance_m,undock_marker_in_view";
+  }
+  table << '\n';
   for (const TrialResult& r : results) {
     const auto& c = r.conditions;
     table << c.index << ',' << c.seed << ',' << c.distance_m << ',' << c.bearing_deg << ','
@@ -176,7 +296,16 @@ void write_sim_outputs(const std::string& dir, const std::vector<TrialResult>& r
           << ',' << r.aborts << ',' << r.failsafe << ',' << r.time_to_dock_s << ','
           << r.lateral_error_mm << ',' << r.yaw_error_deg << ',' << r.sim_time_s << ',' << r.ticks
           << ',' << r.overruns << ',' << r.jitter_p99_ms << ',' << r.estimator_ms_mean << ','
-          << r.recognised_fraction << ',' << r.estimate_error_mm_median << '\n';
+          << r.recognised_fraction << ',' << r.estimate_error_mm_median;
+    if (recharge) {
+      const RechargeResult& h = r.charge;
+      table << ',' << trial_recharged(r) << ',' << h.charged << ',' << h.departed << ",\""
+            << h.end_reason << "\"," << h.seated_s / 3600.0 << ',' << h.contact_fraction << ','
+            << h.unseated_unnoticed_max_s << ',' << h.reseats << ',' << h.hold_wh << ','
+            << h.charged_wh << ',' << h.hold_fraction << ',' << h.soc_start << ',' << h.soc_end
+            << ',' << h.undock_clearance_m << ',' << h.undock_marker_in_view;
+    }
+    table << '\n';
   }
   write_file_atomically(dir + "/trials.csv", table.str());
   write_file_atomically(dir + "/summary.json", summary_json(summary) + "\n");
@@ -194,7 +323,7 @@ void write_sim_outputs(const std::string& dir, const std::vector<TrialResult>& r
     write_file_atomically(dir + name, csv);
     // The first few, and every trial that did not dock within tolerance: those are the ones a
     // person needs to look at.
-    if (r.conditions.index < plot_trials || !r.success) {
+    if (r.conditions.index < plot_trials || !r.success || (r.recharge && !trial_recharged(r))) {
       std::snprintf(name, sizeof(name), "/trial_%03d.png", r.conditions.index);
       plot_trial(r, dir + name);
     }

@@ -23,6 +23,23 @@ struct SimSummary {
   double tick_jitter_ms_max = 0.0;  // worst tick of any trial
   double estimator_ms_mean = 0.0;
   double estimate_error_mm_median = -1.0;
+  // The recharging mission (mission.kind recharge); absent from the reports otherwise.
+  bool recharge = false;
+  int recharged = 0;  // trial_recharged(): docked, charged and departed clear, marker in view
+  double recharge_rate = 0.0;
+  int charged = 0;
+  int departed = 0;
+  int undock_clear = 0;                // departed with the marker in view
+  double contact_fraction_min = -1.0;  // over trials that reached CHARGING
+  double contact_fraction_median = -1.0;
+  double unseated_unnoticed_max_s = 0.0;  // worst trial
+  int reseats = 0;                        // over all trials
+  double seated_h_median = -1.0;          // battery time seated while charging
+  double hold_wh_median = -1.0;
+  double charged_wh_median = -1.0;
+  double hold_fraction_median = -1.0;
+  double hold_fraction_max = -1.0;
+  double undock_clearance_m_min = -1.0;
 };
 
 SimSummary summarise(const std::vector<TrialResult>& results);

@@ -1,4 +1,5 @@
-// Sensors: the vehicle's navigation sensors where it has them (depth, attitude, rates).
+// Sensors: the vehicle's navigation sensors where it has them (depth, attitude, rates), the dock
+// contact, and the battery and charger state the recharging mission watches.
 #pragma once
 
 #include <Eigen/Geometry>
@@ -16,6 +17,13 @@ struct SensorReadings {
   // Charging contact with the docking station (e.g. the charger's current sense).
   bool dock_contact_valid = false;
   bool dock_contact = false;
+  // The battery (from its monitor) and the station's charger (its current sense, over the dock's
+  // link). charge_current_a is what the charger pushes into the battery: 0 when it delivers none.
+  bool battery_valid = false;
+  double soc_fraction = 0.0;  // state of charge, 0..1
+  double battery_voltage_v = 0.0;
+  bool charger_valid = false;
+  double charge_current_a = 0.0;
 };
 
 class Sensors {

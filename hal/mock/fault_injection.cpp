@@ -16,6 +16,9 @@ void describe(ParamVisitor& v, FaultInjection& f) {
       {"s", -1.0, 1e6, "depth and attitude read NaN (still flagged valid) from then (-1: never)"});
   v.param("sensor_lost_at_s", f.sensor_lost_at_s,
           {"s", -1.0, 1e6, "the navigation sensors stop answering at this sim time (-1: never)"});
+  v.param(
+      "charger_fails_at_s", f.charger_fails_at_s,
+      {"s", -1.0, 1e6, "the station's charger delivers no current from this sim time (-1: never)"});
 }
 
 }  // namespace rovctl::hal::mock

@@ -1,6 +1,7 @@
 // Noisy depth, attitude and rates from the world's truth; NaN and loss by fault injection.
 #include "hal/mock/mock_sensors.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -8,7 +9,11 @@ namespace rovctl::hal::mock {
 
 MockSensors::MockSensors(const SimulatedWorld& world, const SensorSimParams& params,
                          const FaultInjection& faults, std::uint64_t seed)
-    : world_(world), params_(params), faults_(faults), rng_(seed) {}
+    : world_(world),
+      params_(params),
+      faults_(faults),
+      rng_(seed),
+      charger_rng_(seed ^ 0x9e3779b97f4a7c15ULL) {}
 
 bool MockSensors::read(SensorReadings& r) {
   const std::chrono::nanoseconds now = world_.time();
@@ -19,9 +24,18 @@ bool MockSensors::read(SensorReadings& r) {
   }
   const VehicleState& s = world_.state();
   r.stamp = now;
-  // The charger's current sense: live once the probe is captured in the socket.
+  // The probe's seat contact: once captured, as long as it stays seated (with the latch closed it
+  // cannot leave, so the docking mission sees what it always saw).
   r.dock_contact_valid = true;
-  r.dock_contact = world_.docking().docked;
+  r.dock_contact = world_.docking().docked && world_.docking().seated;
+  const ChargeTruth& charge = world_.charge();
+  r.battery_valid = true;
+  r.soc_fraction = charge.soc_fraction;
+  r.battery_voltage_v = charge.battery_voltage_v;
+  r.charger_valid = true;
+  r.charge_current_a = std::max(
+      0.0, charge.charge_current_a + world_.params().recharge.charger.current_sense_noise_a *
+                                         charger_normal_(charger_rng_));
   r.depth_valid = true;
   r.attitude_valid = true;
   if (FaultInjection::active(faults_.sensor_nan_at_s, now)) {

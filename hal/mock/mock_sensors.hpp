@@ -1,5 +1,6 @@
 // MockSensors: depth and attitude of the simulated vehicle as its pressure sensor and AHRS would
-// report them, with noise, and with injectable NaN readings and sensor loss.
+// report them, with noise, and with injectable NaN readings and sensor loss; the dock contact, the
+// battery monitor and the station charger's current sense.
 #pragma once
 
 #include <cstdint>
@@ -28,6 +29,9 @@ class MockSensors final : public Sensors {
   FaultInjection faults_;
   std::mt19937_64 rng_;
   std::normal_distribution<double> normal_{0.0, 1.0};
+  // The charger's current sense has its own noise stream: the navigation noise stays as it was.
+  std::mt19937_64 charger_rng_;
+  std::normal_distribution<double> charger_normal_{0.0, 1.0};
 };
 
 }  // namespace rovctl::hal::mock

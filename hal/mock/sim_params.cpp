@@ -35,6 +35,12 @@ void describe(ParamVisitor& v, ContactParams& p) {
   v.param("stiffness_npm", p.stiffness_npm,
           {"N/m", 10.0, 1e6, "contact stiffness of the station face and the socket bottom"});
   v.param("damping_nspm", p.damping_nspm, {"N s/m", 0.0, 1e5, "contact damping"});
+  v.param("socket_wall", p.socket_wall,
+          "a probe past the socket mouth meets the socket's wall sideways (not the face)");
+  v.param("bore_radius_m", p.bore_radius_m,
+          {"m", 0.0, 0.5, "radius of the socket's bore at the capture depth (the funnel narrows)"});
+  v.param("wall_band_m", p.wall_band_m,
+          {"m", 0.0, 0.1, "how far beyond the funnel tolerance the wall catches the probe"});
 }
 
 void describe(ParamVisitor& v, CameraSimParams& p) {
@@ -77,6 +83,38 @@ void describe(ParamVisitor& v, TrialRandomisation& p) {
           {"grey levels", 0.0, 50.0, "image noise std dev, upper end"});
 }
 
+void describe(ParamVisitor& v, RechargeSimParams& p) {
+  v.section("battery", "the vehicle's battery and the thrusters' power draw",
+            [&p](ParamVisitor& s) { describe(s, p.battery); });
+  v.section("charger", "the docking station's charger",
+            [&p](ParamVisitor& s) { describe(s, p.charger); });
+  v.param("seated_time_scale", p.seated_time_scale,
+          {"-", 1.0, 10000.0, "battery time per physics time while seated (speeds the charge up)"});
+  v.param("initial_soc_min", p.initial_soc_min,
+          {"-", 0.0, 1.0, "lowest state of charge a trial starts with"});
+  v.param("initial_soc_max", p.initial_soc_max,
+          {"-", 0.0, 1.0, "highest state of charge a trial starts with"});
+  v.param("current_max_mps", p.current_max_mps,
+          {"m/s", 0.0, 1.0, "recharge trials: horizontal current speed, uniform in [0, max]"});
+  v.param("tide_turn_degps", p.tide_turn_degps,
+          {"deg/s", -10.0, 10.0, "recharge trials: rate at which the current turns"});
+  v.param("gust_peak_mps", p.gust_peak_mps,
+          {"m/s", 0.0, 1.0, "recharge trials: largest gust along the current"});
+  v.param("gust_duration_s", p.gust_duration_s, {"s", 0.1, 600.0, "recharge trials: gust length"});
+  v.param("gust_interval_s", p.gust_interval_s,
+          {"s", 0.1, 3600.0, "recharge trials: mean gap between gusts"});
+}
+
+void apply_recharge_sea(SimParams& p) {
+  p.trials.current_max_mps = p.recharge.current_max_mps;
+  p.current.tide_turn_degps = p.recharge.tide_turn_degps;
+  p.current.gust_peak_mps = p.recharge.gust_peak_mps;
+  p.current.gust_duration_s = p.recharge.gust_duration_s;
+  p.current.gust_interval_s = p.recharge.gust_interval_s;
+  p.contact.latch_on_dock = false;
+  p.contact.socket_wall = true;
+}
+
 void describe(ParamVisitor& v, SimParams& p) {
   v.param("integration_step_ms", p.integration_step_ms,
           {"ms", 0.1, 10.0, "physics integration step (RK4), finer than the control tick"});
@@ -109,6 +147,8 @@ void describe(ParamVisitor& v, SimParams& p) {
           scenario_names());
   v.section("scenarios", "parameters of each imaging scenario (used when it is selected)",
             [&p](ParamVisitor& s) { describe(s, p.scenarios); });
+  v.section("recharge", "the recharging mission: battery, charger, sped-up charge, its sea",
+            [&p](ParamVisitor& s) { describe(s, p.recharge); });
 }
 
 }  // namespace rovctl::hal::mock

@@ -7,6 +7,8 @@
 #include <Eigen/Geometry>
 #include <string>
 
+#include "hal/mock/battery_model.hpp"
+#include "hal/mock/charger.hpp"
 #include "hal/mock/fault_injection.hpp"
 #include "hal/mock/render_scenario.hpp"
 #include "hal/mock/scene_renderer.hpp"
@@ -42,6 +44,14 @@ struct ContactParams {
   // Penalty contact between the probe tip and the station face / socket bottom.
   double stiffness_npm = 3000.0;
   double damping_nspm = 150.0;
+  // The socket's wall: past the mouth the socket narrows from the funnel (lateral_tolerance_m) to
+  // a bore of bore_radius_m at the capture depth, and a probe that slides sideways meets it
+  // (within wall_band_m beyond the funnel) instead of the station face. Off in the docking
+  // trials, whose latch holds the probe; the recharge trials, which hold it themselves, turn it
+  // on: a point contact with a 3 cm play would let the push buckle the vehicle about the probe.
+  bool socket_wall = false;
+  double bore_radius_m = 0.005;
+  double wall_band_m = 0.01;
 };
 
 void describe(ParamVisitor& v, ContactParams& p);
@@ -80,6 +90,27 @@ struct TrialRandomisation {
 
 void describe(ParamVisitor& v, TrialRandomisation& p);
 
+// The recharging mission's world: the battery, the station's charger, how much faster the charge
+// runs than the physics while seated, and the sea `rovctl sim --mission recharge` docks into.
+struct RechargeSimParams {
+  BatteryParams battery;
+  ChargerParams charger;
+  // While the probe is seated the battery (and the energy books) run this many times faster than
+  // the physics: a charge of an hour takes under a minute of ticks, the hold still at tick rate.
+  double seated_time_scale = 100.0;
+  double initial_soc_min = 0.3;  // each trial's starting SoC, uniform in [min, max]
+  double initial_soc_max = 0.5;
+  // The sea of the recharge trials (replacing trials.current_max_mps and the current's tide and
+  // gusts); the latch stays open, the vehicle holds itself seated.
+  double current_max_mps = 0.15;
+  double tide_turn_degps = 1.0;
+  double gust_peak_mps = 0.05;
+  double gust_duration_s = 4.0;
+  double gust_interval_s = 15.0;
+};
+
+void describe(ParamVisitor& v, RechargeSimParams& p);
+
 struct SimParams {
   double integration_step_ms = 2.0;  // physics step, finer than the control tick
   bool realtime = false;             // pace the simulation by the wall clock (hardware in the loop)
@@ -96,8 +127,13 @@ struct SimParams {
   // scenario's parameters.
   std::string scenario = "clear";
   ScenarioParams scenarios;
+  RechargeSimParams recharge;
 };
 
 void describe(ParamVisitor& v, SimParams& p);
+
+// The recharge trials' sea and station: the current, its tide and gusts from sim.recharge, and no
+// latch (the mission holds the probe seated itself).
+void apply_recharge_sea(SimParams& p);
 
 }  // namespace rovctl::hal::mock

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <random>
 #include <stdexcept>
 
 namespace rovctl::hal::mock {
@@ -28,7 +29,9 @@ SimulatedWorld::SimulatedWorld(const SimParams& params, const VehicleGeometry& v
       station_(station),
       dynamics_(params.dynamics),
       thrusters_(vehicle.thrusters, params.thrusters),
-      current_(params.current, 0) {
+      current_(params.current, 0),
+      battery_(params.recharge.battery),
+      charger_(params.recharge.charger) {
   if (!(params.integration_step_ms > 0.0)) {
     throw std::invalid_argument("sim.integration_step_ms must be positive");
   }
@@ -57,6 +60,15 @@ void SimulatedWorld::reset(const VehicleState& initial,
   thrusters_.reset();
   time_ns_.store(0);
   docking_ = DockingTruth{};
+  // The starting SoC from its own generator: the trial's other draws stay as they were.
+  std::mt19937_64 soc_rng(seed ^ 0x2545f4914f6cdd1dULL);
+  const auto& r = params_.recharge;
+  battery_.reset(std::uniform_real_distribution<double>(
+      r.initial_soc_min, std::max(r.initial_soc_min, r.initial_soc_max))(soc_rng));
+  charge_ = ChargeTruth{};
+  charge_.soc_fraction = battery_.soc_fraction();
+  charge_.battery_voltage_v = battery_.voltage_v();
+  charger_failed_ = false;
   history_count_ = 0;
   history_head_ = 0;
   update_docking();
@@ -90,16 +102,33 @@ Eigen::Vector3d SimulatedWorld::contact_force_world(const VehicleState& s, bool&
   const Eigen::Vector3d d = tip_marker - station_.socket_marker_m;
   // Outside the socket the face (the plane of the socket mouth) stops the probe; inside, the
   // socket bottom at the capture depth does.
-  const bool in_socket = std::hypot(d.x(), d.y()) <= params_.contact.lateral_tolerance_m;
+  const ContactParams& c = params_.contact;
+  const double lateral = std::hypot(d.x(), d.y());
+  // The wall's radius at this depth: the funnel narrowing to the bore at the capture depth.
+  const double depth = std::clamp(d.z() / std::max(1e-6, station_.capture_depth_m), 0.0, 1.0);
+  const double wall_radius_m =
+      c.lateral_tolerance_m - depth * std::max(0.0, c.lateral_tolerance_m - c.bore_radius_m);
+  const bool walled = c.socket_wall && d.z() > 0.0 && lateral > wall_radius_m &&
+                      lateral <= c.lateral_tolerance_m + c.wall_band_m;
+  const bool in_socket = lateral <= c.lateral_tolerance_m || walled;
   const double penetration = in_socket ? d.z() - station_.capture_depth_m : d.z();
-  if (penetration <= 0.0) return Eigen::Vector3d::Zero();
-  touching = true;
   const Eigen::Vector3d tip_velocity_world =
       R * (s.velocity_body_mps() + s.omega_body_radps().cross(tip));
+  Eigen::Vector3d f = Eigen::Vector3d::Zero();
+  if (walled) {
+    touching = true;
+    const Eigen::Vector3d out_world =
+        T_world_marker_.linear() * Eigen::Vector3d(d.x(), d.y(), 0.0) / lateral;
+    const double push = c.stiffness_npm * (lateral - wall_radius_m) +
+                        c.damping_nspm * tip_velocity_world.dot(out_world);
+    f -= std::max(0.0, push) * out_world;
+  }
+  if (penetration <= 0.0) return f;
+  touching = true;
   const Eigen::Vector3d axis_world = T_world_marker_.linear().col(2);
-  const double push = params_.contact.stiffness_npm * penetration +
-                      params_.contact.damping_nspm * tip_velocity_world.dot(axis_world);
-  return -std::max(0.0, push) * axis_world;
+  const double push =
+      c.stiffness_npm * penetration + c.damping_nspm * tip_velocity_world.dot(axis_world);
+  return f - std::max(0.0, push) * axis_world;
 }
 
 void SimulatedWorld::substep(std::int64_t dt_ns) {
@@ -123,6 +152,7 @@ void SimulatedWorld::substep(std::int64_t dt_ns) {
   }
   time_ns_.fetch_add(dt_ns);
   update_docking();
+  update_charge(dt);
   record();
 }
 
@@ -143,11 +173,37 @@ void SimulatedWorld::update_docking() {
   docking_.contact = touching;
   const bool centred = docking_.lateral_error_m <= params_.contact.lateral_tolerance_m;
   if (touching && !centred) docking_.collided = true;
+  const double seat_radius_m = params_.contact.lateral_tolerance_m +
+                               (params_.contact.socket_wall ? params_.contact.wall_band_m : 0.0);
+  docking_.seated = docking_.lateral_error_m <= seat_radius_m &&
+                    d.z() >= station_.capture_depth_m - params_.recharge.charger.pin_engage_m &&
+                    docking_.misalignment_rad <= params_.contact.angle_tolerance_deg * kDegToRad;
   if (!docking_.docked && centred && d.z() >= station_.capture_depth_m &&
       docking_.misalignment_rad <= params_.contact.angle_tolerance_deg * kDegToRad) {
     docking_.docked = true;
     docking_.docked_at = time();
   }
+}
+
+void SimulatedWorld::update_charge(double dt_s) {
+  if (FaultInjection::active(params_.faults.charger_fails_at_s, time())) charger_failed_ = true;
+  const bool seated = docking_.seated;
+  const double scale = seated ? params_.recharge.seated_time_scale : 1.0;
+  const double battery_dt_s = dt_s * scale;
+  const double current_a = battery_.accepted_current_a(charger_.offer_a(seated, charger_failed_));
+  const double thruster_wh_before = battery_.thruster_wh();
+  battery_.step(battery_dt_s, current_a,
+                thruster_power_w(thrusters_, params_.recharge.battery.thruster_power_w_per_n1_5));
+  if (seated) {
+    charge_.seated_thruster_wh += battery_.thruster_wh() - thruster_wh_before;
+    charge_.seated_s += dt_s;
+  }
+  charge_.battery_time_s += battery_dt_s;
+  charge_.soc_fraction = battery_.soc_fraction();
+  charge_.battery_voltage_v = battery_.voltage_v();
+  charge_.charge_current_a = current_a;
+  charge_.charged_wh = battery_.charged_wh();
+  charge_.thruster_wh = battery_.thruster_wh();
 }
 
 void SimulatedWorld::record() {

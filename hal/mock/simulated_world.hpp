@@ -10,6 +10,8 @@
 #include <vector>
 
 #include "hal/interfaces/thruster_bus.hpp"
+#include "hal/mock/battery_model.hpp"
+#include "hal/mock/charger.hpp"
 #include "hal/mock/sim_params.hpp"
 #include "hal/mock/thruster_model.hpp"
 #include "hal/mock/vehicle_dynamics.hpp"
@@ -28,6 +30,7 @@ struct DockingTruth {
   bool contact = false;           // the probe presses on the station face or socket bottom now
   bool collided = false;          // the probe has hit the station face outside the socket (latched)
   bool docked = false;            // captured: deep enough, centred and aligned (latched)
+  bool seated = false;            // now: in the socket with the charging pins touching
   std::chrono::nanoseconds docked_at{-1};
   double max_contact_force_n = 0.0;
 };
@@ -41,6 +44,19 @@ struct WorldTruth {
   Eigen::Isometry3d T_cl_marker = Eigen::Isometry3d::Identity();  // what the estimator seeks
   Eigen::Matrix<double, 6, 1> thrust_wrench_body = Eigen::Matrix<double, 6, 1>::Zero();
   DockingTruth docking;
+};
+
+// The battery and charger side of the world. Energies and charge time are in battery time (sped
+// up by sim.recharge.seated_time_scale while seated).
+struct ChargeTruth {
+  double soc_fraction = 0.0;
+  double battery_voltage_v = 0.0;
+  double charge_current_a = 0.0;    // into the battery now
+  double charged_wh = 0.0;          // put in by the charger so far
+  double thruster_wh = 0.0;         // drawn by the thrusters so far
+  double seated_thruster_wh = 0.0;  // drawn by the thrusters while seated: the hold's energy
+  double seated_s = 0.0;            // physics time seated
+  double battery_time_s = 0.0;      // physics time plus the sped-up seated time
 };
 
 class SimulatedWorld {
@@ -68,6 +84,9 @@ class SimulatedWorld {
   const VehicleState& state() const { return state_; }
   WorldTruth truth() const;
   const DockingTruth& docking() const { return docking_; }
+  const ChargeTruth& charge() const { return charge_; }
+  // The charger delivers nothing from now on (fault injection).
+  void fail_charger() { charger_failed_ = true; }
 
   // The body pose at an earlier time, from the history of the last steps (interpolated; clamped
   // to the oldest kept sample), for cameras with capture latency.
@@ -96,6 +115,7 @@ class SimulatedWorld {
   // The station's push on the probe tip (world frame), and whether it is touching.
   Eigen::Vector3d contact_force_world(const VehicleState& s, bool& touching) const;
   void update_docking();
+  void update_charge(double dt_s);
   void record();
 
   SimParams params_;
@@ -111,6 +131,10 @@ class SimulatedWorld {
   std::atomic<std::int64_t> time_ns_{0};  // read by clocks on other threads
   VehicleState state_;
   DockingTruth docking_;
+  BatteryModel battery_;
+  Charger charger_;
+  ChargeTruth charge_;
+  bool charger_failed_ = false;
   std::vector<Sample> history_;   // ring, sized at construction
   std::size_t history_head_ = 0;  // index of the newest sample
   std::size_t history_count_ = 0;
