@@ -24,6 +24,10 @@ void EstimatorParams::validate() const {
   }
 }
 
+GaReading first_ga_reading() { return GaReading{"per_child", "children", "children", "binary"}; }
+
+GaReading EstimatorParams::ga_reading() const { return improved() ? first_ga_reading() : faithful; }
+
 void describe(hal::ParamVisitor& v, EstimatorParams& p) {
   v.param("mode", p.mode,
           "faithful: the paper's RM-GA alone; improved: plus blob seeding, elite refinement and "
@@ -61,6 +65,28 @@ void describe(hal::ParamVisitor& v, EstimatorParams& p) {
     s.param("elite_count", p.ga.elite_count,
             {"-", 0, 100, "best genes carried over unchanged (elitism)"});
   });
+  v.section("faithful",
+            "faithful mode: the reading of what the paper's GA leaves open (improved mode runs "
+            "per_child / children / children); `rovctl study` scores each against the paper",
+            [&p](hal::ParamVisitor& s) {
+              s.param("mutation", p.faithful.mutation,
+                      "what mutation_rate is the probability of: per_child (one random bit "
+                      "flipped in each of the six fields of a mutated child), per_field (one "
+                      "random bit in each field that mutates), per_bit (each of the 72 bits)",
+                      {"per_child", "per_field", "per_bit"});
+              s.param("mutants", p.faithful.mutants,
+                      "which genes mutate: the bred children only, or every gene outside the "
+                      "elite (survivors mutate in place)",
+                      {"children", "non_elite"});
+              s.param("evaluation", p.faithful.evaluation,
+                      "which genes a generation evaluates: the changed ones, or the whole "
+                      "population (same result on one frame, the cost the paper's Fig. 8 counts)",
+                      {"children", "population"});
+              s.param("coding", p.faithful.coding,
+                      "how 12 bits encode a field: binary, or a reflected Gray code (neighbouring "
+                      "values one bit apart)",
+                      {"binary", "gray"});
+            });
   v.section("search", "GA search volume: marker origin in the left camera frame",
             [&p](hal::ParamVisitor& s) {
               s.param("x_min_m", p.search.x_min_m, {"m", -5.0, 5.0, "lowest x (right)"});
@@ -87,6 +113,10 @@ void describe(hal::ParamVisitor& v, EstimatorParams& p) {
           "improved mode: seed genes from colour blobs triangulated in both images");
   v.param("refine_elite", p.refine_elite,
           "improved mode: least-squares refinement of the elite on the blobs' centroids");
+  v.param("far_field_fitness", p.far_field_fitness,
+          "not in the paper, any mode: rank genes by the paper's fitness plus a graded term for "
+          "how near each projected sphere lies to its colour (orders the poses the paper's "
+          "fitness scores 0); the estimate's fitness stays the paper's");
 }
 
 }  // namespace rovctl::estimator

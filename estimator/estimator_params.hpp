@@ -32,10 +32,28 @@ struct GaParams {
   int elite_count = 1;          // best individuals carried unchanged (elitism)
 };
 
+// The paper (Sec. 2.3) names elitism, two-point crossover, a selection rate and a mutation rate
+// and leaves the rest open; these are the readings of what it leaves open. The faithful mode runs
+// the configured reading (the defaults fit the paper best: `rovctl study`'s ablation); the improved
+// mode always runs the reading rovctl shipped first (per_child, children, children), so the
+// closed loop does not change with the faithful default.
+struct GaReading {
+  // per_child: with probability mutation_rate a child gets one random bit flipped in each of its
+  // six fields; per_field: each field, with that probability, gets one random bit flipped;
+  // per_bit: each of the 72 bits flips with that probability.
+  std::string mutation = "per_bit";
+  std::string mutants = "children";       // children: only the bred children; non_elite: too
+                                          // the survivors outside the elite
+  std::string evaluation = "population";  // children: only changed genes; population: every gene
+                                          // every generation (Fig. 8's cost ~ population)
+  std::string coding = "gray";  // binary: a field is a plain 12-bit number; gray: a Gray code
+};
+
 struct EstimatorParams {
   // "faithful": the paper's RM-GA alone. "improved": plus the switches below.
   std::string mode = "improved";
   GaParams ga;
+  GaReading faithful;  // the faithful mode's reading of the paper's GA
   SearchVolume search;
   FitnessParams fitness;
   // "generations": a fixed count per frame (reproducible with a seed); "time": as many
@@ -54,11 +72,20 @@ struct EstimatorParams {
   // Improvements (used when mode is "improved").
   bool blob_seeding = true;  // seed individuals from colour blobs triangulated in 3D
   bool refine_elite = true;  // least-squares refinement of the elite on blob centroids
+  // Not in the paper, any mode: the GA ranks genes by the paper's fitness plus a small graded
+  // term (how near each projected sphere centre lies to its colour) that orders the ~90 % of
+  // the search volume the paper's fitness scores 0. The estimate's fitness stays the paper's.
+  bool far_field_fitness = false;
 
   bool improved() const { return mode == "improved"; }
+  // The GA reading this mode runs (see GaReading).
+  GaReading ga_reading() const;
   // Cross-field checks the per-key ranges cannot express; throws std::invalid_argument.
   void validate() const;
 };
+
+// The reading rovctl shipped first and the improved mode keeps (binary coding).
+GaReading first_ga_reading();
 
 void describe(hal::ParamVisitor& v, EstimatorParams& params);
 

@@ -6,7 +6,16 @@
 
 namespace rovctl::estimator {
 
-GeneCodec::GeneCodec(const SearchVolume& v) : volume_(v) {
+namespace {
+
+std::uint16_t gray_to_binary(std::uint16_t g) {
+  for (std::uint16_t shift = g >> 1; shift != 0; shift >>= 1) g ^= shift;
+  return g;
+}
+
+}  // namespace
+
+GeneCodec::GeneCodec(const SearchVolume& v, bool gray) : volume_(v), gray_(gray) {
   lo_ = {v.x_min_m, v.y_min_m, v.z_min_m, -v.epsilon_max, -v.epsilon_max, -v.epsilon_max};
   hi_ = {v.x_max_m, v.y_max_m, v.z_max_m, v.epsilon_max, v.epsilon_max, v.epsilon_max};
 }
@@ -14,7 +23,8 @@ GeneCodec::GeneCodec(const SearchVolume& v) : volume_(v) {
 Eigen::Isometry3d GeneCodec::decode(const Gene& gene) const {
   double p[kGeneFields];
   for (int i = 0; i < kGeneFields; ++i) {
-    p[i] = lo_[i] + (hi_[i] - lo_[i]) * (gene.field[i] & kFieldMax) / kFieldMax;
+    const std::uint16_t f = gene.field[i] & kFieldMax;
+    p[i] = lo_[i] + (hi_[i] - lo_[i]) * (gray_ ? gray_to_binary(f) : f) / kFieldMax;
   }
   Eigen::Vector3d e(p[3], p[4], p[5]);
   const double n2 = e.squaredNorm();
@@ -41,7 +51,8 @@ bool GeneCodec::encode(const Eigen::Isometry3d& T, Gene& gene) const {
     const double s = (p[i] - lo_[i]) / (hi_[i] - lo_[i]);
     if (!(s >= 0.0 && s <= 1.0)) inside = false;
     const double clamped = std::clamp(std::isfinite(s) ? s : 0.5, 0.0, 1.0);
-    gene.field[i] = static_cast<std::uint16_t>(std::lround(clamped * kFieldMax));
+    const auto b = static_cast<std::uint16_t>(std::lround(clamped * kFieldMax));
+    gene.field[i] = gray_ ? static_cast<std::uint16_t>(b ^ (b >> 1)) : b;
   }
   return inside;
 }

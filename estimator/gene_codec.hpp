@@ -23,7 +23,9 @@ struct Gene {
 
 class GeneCodec {
  public:
-  explicit GeneCodec(const SearchVolume& volume);
+  // gray: each field is a reflected Gray code (neighbouring values one bit apart), else plain
+  // binary.
+  explicit GeneCodec(const SearchVolume& volume, bool gray = false);
 
   Eigen::Isometry3d decode(const Gene& gene) const;
   // The nearest gene to a pose. Returns false when the pose lies outside the search volume
@@ -36,6 +38,7 @@ class GeneCodec {
 
  private:
   SearchVolume volume_;
+  bool gray_ = false;
   std::array<double, kGeneFields> lo_{}, hi_{};
 };
 

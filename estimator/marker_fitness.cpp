@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <opencv2/imgproc.hpp>
 #include <stdexcept>
 
 namespace rovctl::estimator {
@@ -109,6 +110,87 @@ double MarkerFitness::evaluate(const Eigen::Isometry3d& T_cl_marker) const {
   }
   const double f = sum / (2.0 * static_cast<double>(spheres_.size()));
   return std::isfinite(f) ? std::clamp(f, 0.0, 1.0) : 0.0;
+}
+
+}  // namespace rovctl::estimator
+
+namespace rovctl::estimator {
+
+void MarkerFitness::enable_far_field() {
+  far_field_ = true;
+  for (int v = 0; v < 2; ++v) {
+    const int rows = (views_[v].camera.height_px + kFarFieldCellPx - 1) / kFarFieldCellPx;
+    const int cols = (views_[v].camera.width_px + kFarFieldCellPx - 1) / kFarFieldCellPx;
+    for (const Sphere& s : spheres_) {
+      far_mask_[v][s.colour].create(rows, cols, CV_8UC1);
+      far_count_[v][s.colour].create(rows, cols, CV_32SC1);
+      far_distance_cells_[v][s.colour].create(rows, cols, CV_32FC1);
+      far_distance_cells_[v][s.colour].setTo(1e6f);
+    }
+  }
+}
+
+void MarkerFitness::update_far_field() {
+  if (!far_field_ || views_[0].labels == nullptr) return;
+  // A cell holds a colour when a sixteenth of its pixels carry it: lone noise pixels do not.
+  constexpr int kMinPixels = kFarFieldCellPx * kFarFieldCellPx / 16;
+  for (int v = 0; v < 2; ++v) {
+    const View& view = views_[v];
+    for (const Sphere& s : spheres_) far_count_[v][s.colour].setTo(0);
+    for (int y = 0; y < view.camera.height_px; ++y) {
+      const std::uint8_t* row = view.labels + static_cast<std::size_t>(y) * view.stride;
+      for (int x = 0; x < view.camera.width_px; ++x) {
+        const std::uint8_t c = row[x];
+        if (c == 0 || c >= far_count_[v].size() || far_count_[v][c].empty()) continue;
+        ++far_count_[v][c].at<int>(y / kFarFieldCellPx, x / kFarFieldCellPx);
+      }
+    }
+    for (const Sphere& s : spheres_) {
+      cv::Mat& mask = far_mask_[v][s.colour];
+      const cv::Mat& count = far_count_[v][s.colour];
+      for (int r = 0; r < mask.rows; ++r) {
+        for (int c = 0; c < mask.cols; ++c) {
+          mask.at<std::uint8_t>(r, c) = count.at<int>(r, c) >= kMinPixels ? 0 : 255;
+        }
+      }
+      // Distance to the nearest zero (colour) cell; with no such cell every entry is large.
+      cv::distanceTransform(mask, far_distance_cells_[v][s.colour], cv::DIST_L2, cv::DIST_MASK_3);
+    }
+  }
+}
+
+double MarkerFitness::nearness(int v, const Eigen::Vector3d& c, std::uint8_t colour) const {
+  const View& view = views_[v];
+  if (c.z() <= 1e-3) return 0.0;
+  // The distortion polynomial runs away far outside the lens's field: clamp the direction to
+  // a little beyond it (the distance there is past the reach anyway).
+  constexpr double kMaxTan = 1.5;
+  const double x = std::clamp(c.x() / c.z(), -kMaxTan, kMaxTan);
+  const double y = std::clamp(c.y() / c.z(), -kMaxTan, kMaxTan);
+  double u = 0.0, w = 0.0;
+  view.camera.distort(x, y, u, w);
+  const cv::Mat& dist = far_distance_cells_[v][colour];
+  const double cu = u / kFarFieldCellPx, cw = w / kFarFieldCellPx;
+  const double ku = std::clamp(cu, 0.0, dist.cols - 1.0), kw = std::clamp(cw, 0.0, dist.rows - 1.0);
+  const double d_cells =
+      dist.at<float>(static_cast<int>(kw), static_cast<int>(ku)) + std::hypot(cu - ku, cw - kw);
+  return std::max(0.0, 1.0 - d_cells * kFarFieldCellPx / kFarFieldReachPx);
+}
+
+double MarkerFitness::far_field_nearness(const Eigen::Isometry3d& T_cl_marker) const {
+  if (!far_field_ || views_[0].labels == nullptr) return 0.0;
+  double sum = 0.0;
+  for (const Sphere& s : spheres_) {
+    const Eigen::Vector3d c_cl = T_cl_marker * s.centre_marker_m;
+    sum += nearness(0, c_cl, s.colour);
+    sum += nearness(1, views_[1].R_v_cl * c_cl + views_[1].t_v_cl, s.colour);
+  }
+  return sum / (2.0 * static_cast<double>(spheres_.size()));
+}
+
+double MarkerFitness::search_score(const Eigen::Isometry3d& T_cl_marker) const {
+  const double f = evaluate(T_cl_marker);
+  return far_field_ ? f + kFarFieldWeight * far_field_nearness(T_cl_marker) : f;
 }
 
 }  // namespace rovctl::estimator

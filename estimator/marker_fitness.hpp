@@ -35,6 +35,27 @@ class MarkerFitness {
 
   double evaluate(const Eigen::Isometry3d& T_cl_marker) const;
 
+  // Not in the paper. The paper's F is 0 on about 90 % of the search volume (no sample point on
+  // a sphere's colour), which leaves the GA blind there. The far field orders those poses: per
+  // view and sphere, how near the projected centre lies to the nearest pixels of the sphere's
+  // colour, on a coarse grid (kFarFieldCellPx), 1 on them falling linearly to 0 at
+  // kFarFieldReachPx. enable_far_field() allocates; update_far_field() rebuilds the grids from
+  // the current labels (once per frame, after segmenting).
+  static constexpr int kFarFieldCellPx = 8;
+  static constexpr double kFarFieldReachPx = 800.0;
+  // Weight of the far field in search_score: large enough that all spheres near their colours
+  // in both views outrank one sphere half on its colour in one view (the trap the paper's F
+  // sets), small enough that near the truth, where nearness is 1 everywhere, F decides.
+  static constexpr double kFarFieldWeight = 2.0;
+  void enable_far_field();
+  void update_far_field();
+  bool far_field() const { return far_field_; }
+  // The mean nearness in [0, 1] over both views and all spheres (0 without the far field).
+  double far_field_nearness(const Eigen::Isometry3d& T_cl_marker) const;
+  // What the GA ranks by: evaluate(), plus kFarFieldWeight * far_field_nearness() when the far
+  // field is enabled.
+  double search_score(const Eigen::Isometry3d& T_cl_marker) const;
+
   // score(v, s) of every sphere in both views at one pose (spheres in the marker's order; unused
   // entries 0): which spheres the images support, for the estimate's honesty, not the search.
   using SphereScores = std::array<std::array<double, 3>, 2>;
@@ -55,11 +76,18 @@ class MarkerFitness {
     std::uint8_t colour;
   };
   double score_view(const View& view, const Eigen::Vector3d& centre_m, const Sphere& s) const;
+  double nearness(int view, const Eigen::Vector3d& centre_m, std::uint8_t colour) const;
 
   std::array<View, 2> views_;
   std::vector<Sphere> spheres_;
   std::vector<float> inner_xy_, outer_xy_;  // offsets on the unit disc, interleaved x, y
   float inv_inner_ = 1.0f, inv_outer_ = 1.0f;
+  // Far field: per view, per colour class, the distance in grid cells from each cell to the
+  // nearest cell holding that colour (CV_32F), and the scratch mask it is computed from.
+  bool far_field_ = false;
+  std::array<std::array<cv::Mat, 4>, 2> far_distance_cells_;
+  std::array<std::array<cv::Mat, 4>, 2> far_mask_;
+  std::array<std::array<cv::Mat, 4>, 2> far_count_;
 };
 
 }  // namespace rovctl::estimator

@@ -30,9 +30,9 @@ PoseEstimator::PoseEstimator(const hal::StereoRig& rig, const hal::MarkerModel& 
     : rig_(rig),
       params_(validated(params)),
       segmenter_(marker, params_.improved() ? params_.water_correction : 0.0),
-      codec_(params_.search),
+      codec_(params_.search, params_.ga_reading().coding == "gray"),
       fitness_(rig, marker, params_.fitness),
-      ga_(params_.ga, codec_, fitness_, seed),
+      ga_(params_.ga, codec_, fitness_, seed, params_.ga_reading()),
       blobs_(rig, marker),
       refiner_(rig, marker),
       rim_(rig, marker) {
@@ -41,6 +41,7 @@ PoseEstimator::PoseEstimator(const hal::StereoRig& rig, const hal::MarkerModel& 
   labels_[0].setTo(0);
   labels_[1].setTo(0);
   fitness_.set_labels(labels_[0], labels_[1]);
+  if (params_.far_field_fitness) fitness_.enable_far_field();
 }
 
 void PoseEstimator::reset() { ga_.randomise(); }
@@ -57,6 +58,7 @@ bool PoseEstimator::segment(const cv::Mat& left_bgr, const cv::Mat& right_bgr) {
   if (input_error_ != nullptr) return false;
   segmenter_.segment(left_bgr, labels_[0]);
   segmenter_.segment(right_bgr, labels_[1]);
+  fitness_.update_far_field();
   return true;
 }
 
@@ -84,7 +86,7 @@ PoseEstimate PoseEstimator::estimate() {
       if (params_.refine_elite) refiner_.refine(blobs_.blobs(), T_seed);
       Gene gene;
       codec_.encode(T_seed, gene);
-      ga_.insert(gene, fitness_.evaluate(codec_.decode(gene)));
+      ga_.insert(gene, fitness_.search_score(codec_.decode(gene)));
       ++extra_evaluations_;
     }
   }
@@ -103,6 +105,11 @@ PoseEstimate PoseEstimator::estimate() {
 
   estimate.T_cl_marker = codec_.decode(ga_.best().gene);
   estimate.fitness = ga_.best().fitness;
+  if (fitness_.far_field()) {
+    // The GA ranked by the search score; the estimate reports the paper's fitness.
+    estimate.fitness = fitness_.evaluate(estimate.T_cl_marker);
+    ++extra_evaluations_;
+  }
   if (improved && params_.refine_elite) {
     // The elite refined on the blob centroids is continuous (not 12-bit) and sub-pixel; it is
     // taken unless it scores clearly worse, which means the blobs were not the marker.
@@ -122,7 +129,7 @@ PoseEstimate PoseEstimator::estimate() {
             3.0 * std::sqrt(report.covariance.bottomRightCorner<3, 3>().trace());
         Gene gene;
         codec_.encode(T, gene);
-        ga_.insert(gene, fitness_.evaluate(codec_.decode(gene)));
+        ga_.insert(gene, fitness_.search_score(codec_.decode(gene)));
         ++extra_evaluations_;
       }
     }

@@ -44,6 +44,10 @@ struct ModeFigures {
   double evals_per_s = 0.0;
   std::vector<std::pair<int, int>> generations_per_frame;
   double cold_p50 = 0.0, cold_p95 = 0.0, converged_fraction = 0.0;
+  // Cold start to the paper's recognition (fitness >= the threshold), beside the one to 5 mm / 2
+  // deg.
+  double fitness_p50 = 0.0, fitness_p95 = 0.0, fitness_fraction = 0.0;
+  double fitness_t_err_mm_median = 0.0, fitness_r_err_deg_median = 0.0;
   double ms_per_frame = 0.0, ms_per_frame_p95 = 0.0;
   double t_err_mm_median = 0.0, r_err_deg_median = 0.0;
 };
@@ -105,30 +109,45 @@ ModeFigures bench_mode(const hal::StereoRig& rig, const hal::MarkerModel& marker
     out.generations_per_frame.emplace_back(population,
                                            static_cast<int>(hal::percentile(gens, 0.5)));
   }
-  std::vector<double> cold, ms, t_err, r_err;
-  int converged = 0;
+  std::vector<double> cold, ms, t_err, r_err, cold_fitness, fit_t_err, fit_r_err;
+  int converged = 0, recognised = 0;
   for (std::size_t i = 0; i < pairs.size(); ++i) {
     estimator::PoseEstimator est(rig, marker, params, 1000 + i);
-    int first = frame_cap + 1;
+    int first = frame_cap + 1, first_fitness = frame_cap + 1;
     estimator::PoseEstimate e;
+    Eigen::Isometry3d T_at_pose = Eigen::Isometry3d::Identity();
     for (int f = 1; f <= frame_cap; ++f) {
       const double cpu0 = thread_cpu_s();
       e = est.update(pairs[i].left, pairs[i].right);
       ms.push_back(1e3 * (thread_cpu_s() - cpu0));
       const double et = (e.T_cl_marker.translation() - pairs[i].truth.translation()).norm();
       const double er = hal::rotation_angle_rad(e.T_cl_marker.linear(), pairs[i].truth.linear());
-      if (et <= 0.005 && er <= 2.0 * M_PI / 180.0) {
-        first = f;
-        break;
+      if (first_fitness > frame_cap && e.fitness >= params.recognition_threshold) {
+        first_fitness = f;
+        fit_t_err.push_back(et * 1e3);
+        fit_r_err.push_back(er * 180.0 / M_PI);
       }
+      if (first > frame_cap && et <= 0.005 && er <= 2.0 * M_PI / 180.0) {
+        first = f;
+        T_at_pose = e.T_cl_marker;
+      }
+      if (first <= frame_cap && first_fitness <= frame_cap) break;
     }
     // Errors after the run: at convergence, or at the frame cap.
+    if (first <= frame_cap) e.T_cl_marker = T_at_pose;
     t_err.push_back((e.T_cl_marker.translation() - pairs[i].truth.translation()).norm() * 1e3);
     r_err.push_back(hal::rotation_angle_rad(e.T_cl_marker.linear(), pairs[i].truth.linear()) *
                     180.0 / M_PI);
     if (first <= frame_cap) ++converged;
+    if (first_fitness <= frame_cap) ++recognised;
     cold.push_back(first);
+    cold_fitness.push_back(first_fitness);
   }
+  out.fitness_p50 = hal::percentile(cold_fitness, 0.5);
+  out.fitness_p95 = hal::percentile(cold_fitness, 0.95);
+  out.fitness_fraction = static_cast<double>(recognised) / pairs.size();
+  out.fitness_t_err_mm_median = fit_t_err.empty() ? std::nan("") : hal::percentile(fit_t_err, 0.5);
+  out.fitness_r_err_deg_median = fit_r_err.empty() ? std::nan("") : hal::percentile(fit_r_err, 0.5);
   out.cold_p50 = hal::percentile(cold, 0.5);
   out.cold_p95 = hal::percentile(cold, 0.95);
   out.converged_fraction = static_cast<double>(converged) / pairs.size();
@@ -153,6 +172,11 @@ void write_figures(JsonWriter& json, const ModeFigures& m, const std::string& mo
       .field("cold_start_frames_p95", m.cold_p95)
       .field("cold_start_converged_fraction", m.converged_fraction)
       .field("cold_start_frame_cap", cap)
+      .field("cold_start_fitness_frames_p50", m.fitness_p50)
+      .field("cold_start_fitness_frames_p95", m.fitness_p95)
+      .field("cold_start_fitness_fraction", m.fitness_fraction)
+      .field("at_first_fitness_translation_error_mm_median", m.fitness_t_err_mm_median)
+      .field("at_first_fitness_rotation_error_deg_median", m.fitness_r_err_deg_median)
       .field("estimator_ms_per_frame", m.ms_per_frame)
       .field("estimator_ms_per_frame_p95", m.ms_per_frame_p95)
       .field("translation_error_mm_median", m.t_err_mm_median)
@@ -165,8 +189,14 @@ void print_figures(const ModeFigures& m, const std::string& mode, int cap) {
   std::printf("  generations per 33 ms frame        ");
   for (const auto& [population, generations] : m.generations_per_frame)
     std::printf("%d:%d ", population, generations);
-  std::printf("\n  cold start frames p50 / p95        %.0f / %.0f (%.0f%% within %d frames)\n",
-              m.cold_p50, m.cold_p95, 100.0 * m.converged_fraction, cap);
+  std::printf(
+      "\n  cold start frames to 5 mm / 2 deg p50 / p95 %.0f / %.0f (%.0f%% within %d frames)\n",
+      m.cold_p50, m.cold_p95, 100.0 * m.converged_fraction, cap);
+  std::printf(
+      "  cold start frames to fitness p50/p95 %.0f / %.0f (%.0f%% within %d frames); error then "
+      "%.1f mm, %.1f deg\n",
+      m.fitness_p50, m.fitness_p95, 100.0 * m.fitness_fraction, cap, m.fitness_t_err_mm_median,
+      m.fitness_r_err_deg_median);
   std::printf("  estimator CPU ms/frame mean / p95 %.2f / %.2f\n", m.ms_per_frame,
               m.ms_per_frame_p95);
   std::printf("  median error                       %.2f mm, %.2f deg\n", m.t_err_mm_median,

@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
+#include <sstream>
 #include <thread>
 
 #include "app/cli/cli_args.hpp"
@@ -21,7 +22,8 @@ namespace rovctl::app {
 namespace {
 
 constexpr const char* kUsage =
-    "usage: rovctl study [--config FILE] [--quick] [--seeds N] [--out DIR] [--limit-s S] [--json]";
+    "usage: rovctl study [--config FILE] [--quick] [--seeds N] [--out DIR] [--limit-s S] "
+    "[--only VARIANT,...] [--setting P/S/M,...] [--json]";
 
 // One updating line on a terminal; elsewhere (a log, CI) a line per phase and every 10 %.
 class ProgressPrinter {
@@ -73,8 +75,9 @@ class ProgressPrinter {
 }  // namespace
 
 int run_study_command(const std::vector<std::string>& words, std::ostream& out, std::ostream& err) {
-  const CliArgs args = CliArgs::parse("study", words, {"--config", "--seeds", "--out", "--limit-s"},
-                                      {"--quick", "--json"});
+  const CliArgs args = CliArgs::parse(
+      "study", words, {"--config", "--seeds", "--out", "--limit-s", "--only", "--setting"},
+      {"--quick", "--json"});
   const bool quick = args.has("--quick");
   const std::string config_path =
       args.has("--config") ? args.get("--config") : default_config_path();
@@ -87,6 +90,43 @@ int run_study_command(const std::vector<std::string>& words, std::ostream& out, 
       args.get_double("--limit-s", settings.time_limit_s, settings.frame_period_s, 600.0);
   settings.threads = static_cast<int>(
       std::clamp(std::thread::hardware_concurrency(), 1u, 2u));  // the project's two cores
+  std::vector<GaCombination> wanted_settings;
+  if (args.has("--only")) {
+    const std::string list = args.get("--only");
+    for (std::size_t start = 0; start <= list.size();) {
+      const std::size_t comma = std::min(list.find(',', start), list.size());
+      const std::string name = list.substr(start, comma - start);
+      const bool known = std::any_of(settings.variants.begin(), settings.variants.end(),
+                                     [&name](const StudyVariant& v) { return v.name == name; });
+      if (!known) {
+        std::string names;
+        for (const StudyVariant& v : settings.variants) names += " " + v.name;
+        throw UsageError("rovctl study --only: no variant '" + name + "' (variants:" + names + ")");
+      }
+      settings.only.push_back(name);
+      start = comma + 1;
+    }
+  }
+  if (args.has("--setting")) {
+    // population/selection/mutation, as the report names them; each must be one of the study's.
+    std::istringstream list(args.get("--setting"));
+    for (std::string item; std::getline(list, item, ',');) {
+      GaCombination c;
+      char slash1 = 0, slash2 = 0;
+      std::istringstream in(item);
+      in >> c.population >> slash1 >> c.selection_rate >> slash2 >> c.mutation_rate;
+      settings.only_settings = {c};
+      const bool known =
+          in && slash1 == '/' && slash2 == '/' && !StudySettings(settings).settings_run().empty();
+      settings.only_settings.clear();
+      if (!known) {
+        throw UsageError("rovctl study --setting: '" + item +
+                         "' is not population/selection/mutation of a setting of this study");
+      }
+      wanted_settings.push_back(c);
+    }
+    settings.only_settings = wanted_settings;
+  }
   const std::string out_dir = args.get("--out", "study-out");
   if (out_dir.empty())
     throw UsageError("rovctl study: --out needs a directory (" + std::string(kUsage) + ")");

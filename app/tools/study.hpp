@@ -4,10 +4,14 @@
 #pragma once
 
 #include <Eigen/Geometry>
+#include <array>
 #include <functional>
 #include <iosfwd>
+#include <limits>
 #include <map>
+#include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "estimator/estimator_params.hpp"
@@ -26,11 +30,29 @@ struct GaCombination {
 
 // An estimator set-up under study: its mode and where its generations per frame come from.
 struct StudyVariant {
-  std::string name;  // "faithful", "faithful-paper-pc", "improved"
+  StudyVariant() = default;
+  StudyVariant(std::string name_, std::string description_, std::string mode_, bool paper_budget_)
+      : name(std::move(name_)),
+        description(std::move(description_)),
+        mode(std::move(mode_)),
+        paper_budget(paper_budget_) {}
+
+  std::string name;  // "faithful", "faithful-paper-pc", "improved", "reading: ...", ...
   std::string description;
   std::string mode;           // the estimator mode ("faithful" or "improved")
   bool paper_budget = false;  // the paper PC's generations per frame instead of this machine's
+  // Faithful mode: the reading of the paper's GA (unset: the configured one).
+  std::optional<estimator::GaReading> reading;
+  bool far_field = false;  // the non-paper graded far-field fitness
+  // The GA's search box (unset: the study's).
+  std::optional<estimator::SearchVolume> search;
+  bool ablation = false;  // a row of the readings' ablation table
+  bool paper = true;      // only what the paper describes (false: improvements of our own)
 };
+
+// The paper's Table 2 search area read literally: x +-400 mm, y +-200 mm, z 415 +-400 mm (the
+// marker's distance +- 400), z clipped at 50 mm where the spheres fill the image.
+estimator::SearchVolume paper_search_box();
 
 struct StudySettings {
   bool quick = false;
@@ -42,10 +64,20 @@ struct StudySettings {
   double goal_fitness = 0.6;      // the paper's recognition threshold
   double goal_translation_mm = 5.0;
   double goal_rotation_deg = 2.0;
+  // Runs of this setting (the paper's Table 2) go on to the time limit, for the error after 1 s.
+  GaCombination to_limit{40, 0.6, 0.1};
+  int landscape_samples = 20000;  // random poses in the search box for the fitness's blindness
   std::vector<int> fig8_populations;
   int fig8_repeats = 7;  // timings per point; the minimum is kept (load only ever adds time)
   std::vector<GaCombination> combinations;
   std::vector<StudyVariant> variants;
+  // Names of the variants to run (empty: all). A variant keeps its seeds whatever else runs.
+  std::vector<std::string> only;
+  bool runs_variant(const std::string& name) const;
+  // Settings to run (empty: all). A setting keeps its seeds whatever else runs.
+  std::vector<GaCombination> only_settings;
+  bool runs_setting(const GaCombination& c) const;
+  std::vector<GaCombination> settings_run() const;  // the combinations that run, in order
   // The GA's search volume: the estimator's default, the paper's Table 2 area (x +-400 mm,
   // y +-200 mm), not a docking config's wider one, so runs start as randomly as the paper's.
   estimator::SearchVolume search;
@@ -111,6 +143,11 @@ struct StudyRun {
   double final_fitness = 0.0;
   double final_translation_error_mm = 0.0;
   double final_rotation_error_deg = 0.0;
+  // The estimate's error in the frame it first reached the goal fitness (NaN: never).
+  double fitness_translation_error_mm = std::numeric_limits<double>::quiet_NaN();
+  double fitness_rotation_error_deg = std::numeric_limits<double>::quiet_NaN();
+  bool to_limit = false;             // ran to the time limit whatever it reached (final = at limit)
+  double evaluations_per_frame = 0;  // fitness evaluations per frame, mean over the run
 };
 
 // Median and 90th percentile over all runs of a combination, a failure counting as infinitely
@@ -141,6 +178,20 @@ struct VariantSummary {
   int best_ties = 1;  // combinations indistinguishable from `best` (same median, p90, failures)
 };
 
+// What the fitness can tell: F along each axis through the truth, and how much of the search box
+// it scores at all.
+struct FitnessProfile {
+  std::string fitness;  // "paper" or "far-field" (the search score the GA ranks by)
+  double at_truth = 0.0;
+  std::vector<double> offsets_mm;   // translation offsets, both signs
+  std::vector<double> offsets_deg;  // rotation offsets, both signs
+  // [axis][offset]: translation along the left camera's x, y, z; rotation about the marker's.
+  std::array<std::vector<double>, 3> translation, rotation;
+  int samples = 0;  // random poses in the study's search box
+  double share_above_0 = 0.0, share_at_0_3 = 0.0, share_at_0_6 = 0.0;  // F > 0, >= 0.3, >= 0.6
+  double share_graded = 0.0;  // poses the far field orders where F is 0 (far-field only)
+};
+
 struct StudyResult {
   StudySettings settings;
   std::map<std::string, Fig8Curve> fig8;  // Fig. 8 by estimator mode, at the config's selection
@@ -148,6 +199,8 @@ struct StudyResult {
   std::vector<Fig8Curve> budgets;
   std::vector<StudyRun> runs;
   std::vector<VariantSummary> variants;
+  std::vector<FitnessProfile> profiles;     // paper's fitness, and the far field's search score
+  estimator::GaReading configured_reading;  // the faithful reading of the config
   double fig8_wall_s = 0.0;
   double runs_wall_s = 0.0;
   double wall_s = 0.0;
@@ -172,6 +225,32 @@ VariantSummary summarise_variant(const StudyVariant& variant, const std::vector<
                                  const std::vector<GaCombination>& combinations,
                                  double frame_period_s);
 
+// How a reading's runs fit the paper's claims (the ablation table's row).
+struct ReadingFit {
+  std::string variant;
+  CombinationSummary table2;       // 40 / 0.6 / 0.1 (the paper's C, 0.125 s)
+  int populations_converging = 0;  // populations whose best setting has a finite median
+  int populations = 0;
+  // Per population, the best over selection rates at each mutation rate: 0.05 slower than 0.1
+  // (the paper: 0.05 "no enough fitness value"), 0.1 faster than 0.15 ("in most").
+  int mutation_05_slower = 0;
+  int mutation_10_faster_than_15 = 0;
+  int mutation_populations = 0;
+  // RMS of log2(our best time / the paper's) over A-E, "never" counted at the time limit.
+  double table1_log2_rms = 0.0;
+  // Fig. 8: evaluations per frame at the paper's budget, min and max over the settings (the
+  // paper's one curve floor(370 / population) means ~370 whatever the selection rate).
+  double evaluations_per_frame_min = 0.0, evaluations_per_frame_max = 0.0;
+  int claims_held = 0;  // of kReadingClaims below
+};
+constexpr int kReadingClaims = 5;
+ReadingFit reading_fit(const VariantSummary& v, const std::vector<StudyRun>& runs,
+                       double time_limit_s);
+
+// Median of `value` over the runs of one variant (and one setting, if given) where it is finite.
+double run_median(const std::vector<StudyRun>& runs, const std::string& variant,
+                  const GaCombination* setting, double StudyRun::*value);
+
 // Progress of a long phase: (phase, done, total).
 using StudyProgress = std::function<void(const std::string&, long, long)>;
 
@@ -190,6 +269,14 @@ StudyResult run_study(const hal::StereoRig& rig, const hal::MarkerModel& marker,
                       const estimator::EstimatorParams& base,
                       const hal::mock::RenderOptions& render, const StudySettings& settings,
                       const StudyProgress& progress);
+
+// F (and the far field's search score) around the truth on the first frame of `left`/`right`.
+std::vector<FitnessProfile> measure_fitness_profiles(const hal::StereoRig& rig,
+                                                     const hal::MarkerModel& marker,
+                                                     const estimator::EstimatorParams& base,
+                                                     const Eigen::Isometry3d& T_cl_marker,
+                                                     const cv::Mat& left, const cv::Mat& right,
+                                                     int samples);
 
 // `rovctl study` with its streams passed in (the CLI passes std::cout / std::cerr).
 int run_study_command(const std::vector<std::string>& words, std::ostream& out, std::ostream& err);

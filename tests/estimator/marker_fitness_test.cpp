@@ -104,5 +104,28 @@ TEST(MarkerFitness, RejectsLabelsOfTheWrongSize) {
   EXPECT_THROW(f.fitness.set_labels(small, small), std::invalid_argument);
 }
 
+TEST(MarkerFitness, FarFieldIsOffUnlessEnabledAndGradedWhereThePapersFitnessIsBlind) {
+  Fixture f;
+  const Eigen::Isometry3d truth =
+      hal::make_pose({0.03, 0.01, 0.45}, Eigen::Quaterniond::Identity());
+  f.render(truth);
+  EXPECT_EQ(f.fitness.search_score(truth), f.fitness.evaluate(truth));
+  EXPECT_EQ(f.fitness.far_field_nearness(truth), 0.0);
+  f.fitness.enable_far_field();
+  f.fitness.update_far_field();
+  EXPECT_GT(f.fitness.far_field_nearness(truth), 0.95);
+  // Sideways off the marker: the paper's fitness is 0 at both, the far field orders them.
+  Eigen::Isometry3d near = truth, far = truth;
+  near.translation().x() += 0.08;
+  far.translation().x() += 0.25;
+  EXPECT_EQ(f.fitness.evaluate(near), 0.0);
+  EXPECT_EQ(f.fitness.evaluate(far), 0.0);
+  EXPECT_GT(f.fitness.search_score(near), f.fitness.search_score(far));
+  EXPECT_GT(f.fitness.search_score(far), 0.0);
+  // The graded term is small: it never lifts a pose by more than its weight.
+  EXPECT_LE(f.fitness.search_score(truth) - f.fitness.evaluate(truth),
+            MarkerFitness::kFarFieldWeight + 1e-12);
+}
+
 }  // namespace
 }  // namespace rovctl::estimator

@@ -126,10 +126,13 @@ TEST(CommandStudy, QuickJsonWritesEverythingSane) {
     variants.insert(v["name"].as<std::string>());
     EXPECT_EQ(v["table1"].size(), 15u);
   }
-  EXPECT_EQ(variants, (std::set<std::string>{"faithful", "faithful-paper-pc", "improved"}));
+  // The main three, the readings' ablation and the non-paper far-field variant.
+  EXPECT_EQ(variants, (std::set<std::string>{"faithful", "faithful-paper-pc", "improved",
+                                             "per-child", "per-field", "non-elite", "binary",
+                                             "rovctl-box", "first-reading", "far-field-paper-pc"}));
   EXPECT_EQ(json["paper"]["table1"].size(), 5u);
 
-  // Files: CSV with a header and one row per run (15 combinations x 1 seed x 3 variants).
+  // Files: CSV with a header and one row per run (15 combinations x 1 seed x each variant).
   const YAML::Node files = json["files"];
   for (const char* key : {"csv", "report", "fig8_png", "fig9_png", "pose_png"}) {
     const fs::path file = files[key].as<std::string>();
@@ -137,10 +140,13 @@ TEST(CommandStudy, QuickJsonWritesEverythingSane) {
     EXPECT_GT(fs::file_size(file), 100u) << key;
     EXPECT_EQ(file.parent_path(), dir) << key;
   }
-  EXPECT_EQ(line_count(files["csv"].as<std::string>()), 1u + 15u * 3u);
+  EXPECT_EQ(line_count(files["csv"].as<std::string>()), 1u + 15u * variants.size());
   std::ifstream report(files["report"].as<std::string>());
   const std::string md((std::istreambuf_iterator<char>(report)), std::istreambuf_iterator<char>());
-  for (const char* heading : {"## Fig. 8", "## Table 1", "## Table 2", "Where and why"}) {
+  for (const char* heading :
+       {"## Fig. 8", "## Table 1", "## Table 2", "Where and why",
+        "ablation at the paper PC's budget", "Which of the paper's claims",
+        "Pose error at first fitness", "profile around the truth", "Not the paper"}) {
     EXPECT_NE(md.find(heading), std::string::npos) << heading;
   }
   EXPECT_NE(md.find("0.125"), std::string::npos) << "the paper's C beside ours";

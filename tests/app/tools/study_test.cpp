@@ -151,5 +151,72 @@ TEST(StudyFig8Curve, InterpolatesBetweenMeasuredPopulations) {
   EXPECT_EQ(curve.generations_at(40), 300);
 }
 
+TEST(StudyReadingFit, ScoresThePapersClaimsOnOneVariantsRuns) {
+  std::vector<StudyRun> runs;
+  std::vector<GaCombination> combos;
+  // Two populations; at 40 mutation 0.05 never converges, 0.1 is fastest; at 10 0.15 is fastest.
+  auto add = [&](GaCombination c, int frames) {
+    combos.push_back(c);
+    for (int seed = 0; seed < 4; ++seed) {
+      StudyRun r = run("reading", c, seed, frames);
+      r.evaluations_per_frame = 360 + seed;
+      runs.push_back(r);
+    }
+  };
+  add({40, 0.6, 0.05}, -1);
+  add({40, 0.6, 0.1}, 4);
+  add({40, 0.6, 0.15}, 6);
+  add({10, 0.8, 0.05}, 9);
+  add({10, 0.8, 0.1}, 8);
+  add({10, 0.8, 0.15}, 5);
+  const StudyVariant variant{"reading", "", "faithful", true};
+  const VariantSummary v = summarise_variant(variant, runs, combos, kFrame);
+  const ReadingFit fit = reading_fit(v, runs, 0.99);
+  EXPECT_EQ(fit.populations, 2);
+  EXPECT_EQ(fit.populations_converging, 2);
+  EXPECT_NEAR(fit.table2.fitness.median_s, 4 * kFrame, 1e-12);
+  EXPECT_EQ(fit.mutation_populations, 2);
+  EXPECT_EQ(fit.mutation_05_slower, 2);
+  EXPECT_EQ(fit.mutation_10_faster_than_15, 1);
+  EXPECT_DOUBLE_EQ(fit.evaluations_per_frame_min, 360.0);
+  EXPECT_DOUBLE_EQ(fit.evaluations_per_frame_max, 363.0);
+  // Populations converge, C in time, 0.05 slower in both; 0.1 beats 0.15 in 1 of 2 only (not
+  // most); one Fig. 8 curve.
+  EXPECT_EQ(fit.claims_held, 4);
+  // A and C at 5 x 33 ms and 4 x 33 ms against 0.187 s and 0.125 s.
+  const double a = std::log2(5 * kFrame / 0.187), c = std::log2(4 * kFrame / 0.125);
+  EXPECT_NEAR(fit.table1_log2_rms, std::sqrt((a * a + c * c) / 2), 1e-9);
+}
+
+TEST(StudySettings, TheAblationHoldsEveryReadingAndTheNonPaperVariantIsMarked) {
+  hal::StereoRig rig;
+  const StudySettings full = StudySettings::full(rig);
+  int ablation = 0, non_paper = 0;
+  bool per_child = false, per_bit = false, per_field = false, non_elite = false, binary = false;
+  bool paper_box = false, rovctl_box = false;
+  for (const StudyVariant& v : full.variants) {
+    if (v.ablation) {
+      ++ablation;
+      EXPECT_TRUE(v.paper_budget) << v.name;
+      ASSERT_TRUE(v.reading.has_value()) << v.name;
+      per_child |= v.reading->mutation == "per_child";
+      per_field |= v.reading->mutation == "per_field";
+      per_bit |= v.reading->mutation == "per_bit";
+      non_elite |= v.reading->mutants == "non_elite";
+      binary |= v.reading->coding == "binary";
+      (v.search ? paper_box : rovctl_box) = true;
+    }
+    if (!v.paper) {
+      ++non_paper;
+      EXPECT_TRUE(v.far_field) << v.name;
+    }
+  }
+  EXPECT_GE(ablation, 5);
+  EXPECT_EQ(non_paper, 1);
+  EXPECT_TRUE(per_child && per_field && per_bit && non_elite && binary);
+  EXPECT_TRUE(paper_box && rovctl_box);
+  EXPECT_NEAR(paper_search_box().z_max_m, 0.815, 1e-12);
+}
+
 }  // namespace
 }  // namespace rovctl::app
