@@ -171,6 +171,10 @@ void describe(hal::ParamVisitor& v, MissionParams& p) {
   v.param("dock_abort_frames", p.dock_abort_frames,
           {"frames", 1, 1000, "consecutive frames past the dock abort limits before aborting"});
   v.param("dock_timeout_s", p.dock_timeout_s, {"s", 1.0, 3600.0, "DOCK time limit (then ABORT)"});
+  v.param("dock_partial_timeout_s", p.dock_partial_timeout_s,
+          {"s", 0.0, 60.0,
+           "partial view in DOCK (a sphere hidden or half out of the frame): the push holds where "
+           "it is for up to this long, then ABORT"});
   v.param("dock_blind_distance_m", p.dock_blind_distance_m,
           {"m", 0.0, 2.0, "remaining distance within which losing the marker does not abort"});
   v.param("dock_blind_push_n", p.dock_blind_push_n,

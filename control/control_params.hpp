@@ -174,6 +174,7 @@ struct MissionParams {
   // rotated pose that scores well near the socket) must not throw away a good approach.
   int dock_abort_frames = 3;
   double dock_timeout_s = 40.0;
+  double dock_partial_timeout_s = 4.0;  // partial view in DOCK: the push waits this long
   // Near the socket the marker leaves the cameras' view: within this remaining distance a lost
   // marker does not abort, the vehicle pushes along the docking axis for up to blind_timeout_s.
   double dock_blind_distance_m = 0.15;

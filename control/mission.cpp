@@ -128,6 +128,8 @@ void Mission::enter(MissionState to, std::chrono::nanoseconds now, const char* r
   contact_frames_ = 0;
   dock_off_frames_ = 0;
   blind_since_ = std::chrono::nanoseconds{-1};
+  dock_pushed_ = std::chrono::nanoseconds{0};
+  partial_since_ = std::chrono::nanoseconds{-1};
   unseated_since_ = no_current_since_ = overload_since_ = std::chrono::nanoseconds{-1};
   backed_off_ = false;
   if (to == MissionState::search) seen_frames_ = 0;
@@ -182,6 +184,15 @@ MissionOutput Mission::update(const MissionInput& in) {
   // full one.
   const bool seen_dock = full || (seen && blind_zone);
   const bool contact_switch = p_.contact_switch && in.contact;
+  const std::chrono::nanoseconds tick =
+      last_now_.count() >= 0 ? in.now - last_now_ : std::chrono::nanoseconds{0};
+  last_now_ = in.now;
+  const bool waiting_for_full_view = seen && !seen_dock;
+  if (!waiting_for_full_view) {
+    partial_since_ = std::chrono::nanoseconds{-1};
+  } else if (partial_since_.count() < 0) {
+    partial_since_ = in.now;
+  }
   const double t_state = seconds(in.now - entered_);
   const bool lost = unseen_frames_ >= p_.lost_frames;
 
@@ -241,8 +252,11 @@ MissionOutput Mission::update(const MissionInput& in) {
         enter(MissionState::abort, in.now, "lateral error limit");
       } else if (off_limits && yaw_off) {
         enter(MissionState::abort, in.now, "yaw error limit");
-      } else if (!seen_dock && !blind_zone && (lost || partial_frames_ >= p_.lost_frames)) {
-        enter(MissionState::abort, in.now, lost ? "marker lost" : "partial view while docking");
+      } else if (!seen_dock && !blind_zone && lost) {
+        enter(MissionState::abort, in.now, "marker lost");
+      } else if (waiting_for_full_view &&
+                 seconds(in.now - partial_since_) > p_.dock_partial_timeout_s) {
+        enter(MissionState::abort, in.now, "partial view while docking");
       } else if (!seen_dock && blind_zone &&
                  seconds(in.now - blind_since_) > p_.dock_blind_timeout_s) {
         enter(MissionState::abort, in.now, "no contact after blind push");
@@ -299,12 +313,14 @@ MissionOutput Mission::update(const MissionInput& in) {
       out.use_override = !seen;  // brief loss: hold (feed-forward only)
       break;
     case MissionState::dock: {
-      const double back =
-          std::max(dock_start_back_m_ - p_.dock_speed_mps * seconds(in.now - entered_),
-                   -p_.dock_overshoot_m);
+      // On a partial view the push waits where it is, held by the servo on what is seen (as
+      // APPROACH is), until the view is whole again or dock_partial_timeout_s runs out.
+      if (seen_dock) dock_pushed_ += tick;
+      const double back = std::max(dock_start_back_m_ - p_.dock_speed_mps * seconds(dock_pushed_),
+                                   -p_.dock_overshoot_m);
       out.T_cl_marker_desired = offset_along_docking_axis(T_docked_, back);
-      out.servo_active = seen_dock;
-      out.use_override = !seen_dock;
+      out.servo_active = seen;
+      out.use_override = !seen;
       // A re-seat keeps pressing while it slides back in.
       if (charging_started_)
         out.push_body.head<3>() = docked_axis_body_ * p_.recharge.charge_push_n;

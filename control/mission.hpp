@@ -151,6 +151,11 @@ class Mission {
   double last_axial_m_ = 0.0;
   Eigen::Vector3d docked_axis_body_ = Eigen::Vector3d::UnitX();  // docking axis when docked
   std::chrono::nanoseconds blind_since_{-1};
+  // DOCK's push runs on the full view only: the time it has run, and since when the view is
+  // partial (a passing bar, a bubble on a sphere) while the push waits.
+  std::chrono::nanoseconds dock_pushed_{0};
+  std::chrono::nanoseconds partial_since_{-1};
+  std::chrono::nanoseconds last_now_{-1};
   // Recharging.
   bool recharge_ = false;
   bool charging_started_ = false;

@@ -142,15 +142,48 @@ TEST_F(MissionTest, ApproachesOnAPartialViewButNeverDocksOnOne) {
   for (int k = 0; k < params.align_hold_frames; ++k)
     tick(m, true, seen_at({params.standoff_m, 0, 0}));
   ASSERT_EQ(m.state(), MissionState::dock);
-  // Docking, still short of the blind zone: a partial view holds the servo and then aborts.
+  // Docking, still short of the blind zone: on a partial view the push waits where it is (the
+  // servo holds on what is seen), and aborts when the view stays partial too long.
   out = tick(m, true, seen_at({params.standoff_m - 0.02, 0, 0}), false, 0.9, false);
-  EXPECT_FALSE(out.servo_active);
-  for (int k = 0; k < params.lost_frames && m.state() == MissionState::dock; ++k) {
+  EXPECT_TRUE(out.servo_active);
+  const Eigen::Vector3d held = out.T_cl_marker_desired.translation();
+  const int waiting_ticks = static_cast<int>(params.dock_partial_timeout_s / 0.033);
+  for (int k = 0; k < waiting_ticks - 2; ++k) {
+    out = tick(m, true, seen_at({params.standoff_m - 0.02, 0, 0}), false, 0.9, false);
+  }
+  ASSERT_EQ(out.state, MissionState::dock) << "a partial view waits before it aborts";
+  EXPECT_TRUE(out.T_cl_marker_desired.translation().isApprox(held, 1e-9))
+      << "the push does not advance on a partial view";
+  for (int k = 0; k < 5 && m.state() == MissionState::dock; ++k) {
     out = tick(m, true, seen_at({params.standoff_m - 0.02, 0, 0}), false, 0.9, false);
   }
   EXPECT_EQ(m.state(), MissionState::abort);
   const std::vector<std::string> events = drain(m);
   EXPECT_EQ(events.back(), "dock>abort:partial view while docking");
+}
+
+// A bar passing in front of the marker mid-dock: the push pauses and then goes on to contact.
+TEST_F(MissionTest, APassingOccluderPausesTheDockWithoutAborting) {
+  Mission m = make();
+  to_approach(m);
+  tick(m, true, seen_at({params.standoff_m, 0, 0}));
+  for (int k = 0; k < params.align_hold_frames + 1; ++k) {
+    tick(m, true, seen_at({params.standoff_m, 0, 0}));
+  }
+  ASSERT_EQ(m.state(), MissionState::dock);
+  MissionOutput out = tick(m, true, seen_at({params.standoff_m - 0.01, 0, 0}));
+  const double before = out.T_cl_marker_desired.translation().norm();
+  for (int k = 0; k < 30; ++k) {  // 1 s hidden
+    out = tick(m, true, seen_at({params.standoff_m - 0.01, 0, 0}), false, 0.9, false);
+  }
+  EXPECT_EQ(out.state, MissionState::dock);
+  EXPECT_NEAR(out.T_cl_marker_desired.translation().norm(), before, 1e-9);
+  out = tick(m, true, seen_at({params.standoff_m - 0.01, 0, 0}));
+  EXPECT_NE(out.T_cl_marker_desired.translation().norm(), before) << "the push goes on";
+  tick(m, true, seen_at({0.0, 0, 0}), true);
+  for (int k = 0; k < params.contact_frames + 1; ++k) tick(m, true, seen_at({0.0, 0, 0}), true);
+  EXPECT_EQ(m.state(), MissionState::docked);
+  EXPECT_EQ(m.aborts(), 0);
 }
 
 TEST_F(MissionTest, MarkerLostMidApproachAbortsBacksOffAndSearchesAgain) {
