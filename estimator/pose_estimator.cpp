@@ -178,9 +178,13 @@ PoseEstimate PoseEstimator::estimate() {
   }
   // Improved mode also asks the geometry: one rigid marker through the blobs' centroids or the
   // spheres' rims (a refinement accepted).
+  // And the fit must be sure enough: a blurred or noisy rim fits loosely, and its bound says so.
+  const bool refined = estimate.refined || estimate.rim_refined;
+  const bool bounded = estimate.error_bound_m * 1000.0 <= params_.ok_bound_mm &&
+                       estimate.error_bound_deg <= params_.ok_bound_deg;
   estimate.ok = estimate.recognised && estimate.spheres_seen[0] == spheres &&
                 estimate.spheres_seen[1] == spheres &&
-                (!improved || !params_.refine_elite || estimate.refined || estimate.rim_refined);
+                (!improved || !params_.refine_elite || (refined && bounded));
   estimate.compute_time = Clock::now() - start;
   return estimate;
 }
