@@ -148,7 +148,8 @@ struct MissionParams {
   // Recognition: fitness at or above this counts as seeing the marker.
   double min_fitness = 0.6;
   int acquire_frames = 3;  // consecutive recognised frames to leave SEARCH
-  int lost_frames = 8;     // consecutive unrecognised frames that abort APPROACH/ALIGN/DOCK
+  // 1.5 s at 30 Hz: a passing bar or a fish hides the marker that long; the vehicle holds.
+  int lost_frames = 45;  // consecutive unrecognised frames that abort APPROACH/ALIGN/DOCK
   // SEARCH: constant yaw moment (sets a slow scan against the yaw drag); sign = direction.
   double search_yaw_moment_nm = 0.6;
   double search_timeout_s = 0.0;  // 0 = search forever
