@@ -16,25 +16,14 @@
 #include "hal/mock/mock_stereo_camera.hpp"
 #include "hal/mock/scene_renderer.hpp"
 #include "hal/model/pose.hpp"
+#include "render_test_support.hpp"
 #include "sim_test_support.hpp"
 
 namespace rovctl::hal::mock {
 namespace {
 
-CameraModel distorted_camera() {
-  CameraModel c;
-  c.fx_px = 552.0;
-  c.fy_px = 549.0;
-  c.cx_px = 331.5;
-  c.cy_px = 236.0;
-  c.k1 = -0.12;
-  c.k2 = 0.05;
-  return c;
-}
-
-Eigen::Isometry3d ahead(double z) {
-  return make_pose({0.0, 0.0, z}, Eigen::Quaterniond::Identity());
-}
+using test::ahead;
+using test::distorted_camera;
 
 RenderOptions quiet() {
   RenderOptions o;

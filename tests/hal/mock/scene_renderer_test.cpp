@@ -7,24 +7,13 @@
 #include <opencv2/core.hpp>
 
 #include "hal/model/pose.hpp"
+#include "render_test_support.hpp"
 
 namespace rovctl::hal::mock {
 namespace {
 
-CameraModel distorted_camera() {
-  CameraModel c;
-  c.fx_px = 552.0;
-  c.fy_px = 549.0;
-  c.cx_px = 331.5;
-  c.cy_px = 236.0;
-  c.k1 = -0.12;
-  c.k2 = 0.05;
-  return c;
-}
-
-Eigen::Isometry3d ahead(double z) {
-  return make_pose({0.0, 0.0, z}, Eigen::Quaterniond::Identity());
-}
+using test::ahead;
+using test::distorted_camera;
 
 cv::Vec3b pixel_at(const cv::Mat& image, const CameraModel& cam, const Eigen::Vector3d& p) {
   Eigen::Vector2d uv = Eigen::Vector2d::Zero();
