@@ -1,5 +1,5 @@
-// The per-tick calls allocate nothing. This file interposes the malloc family in control_tests
-// (glibc, no sanitizer: that also catches Eigen's aligned mallocs) and counts per thread.
+// The per-tick calls allocate nothing, counted per thread by the tests' malloc counter (glibc, no
+// sanitizer: that also catches Eigen's aligned mallocs).
 #include <gtest/gtest.h>
 
 #include <cstddef>
@@ -12,73 +12,29 @@
 #include "control/pd_visual_servo.hpp"
 #include "hal/model/docking_station.hpp"
 #include "hal/model/vehicle_geometry.hpp"
-
-#if defined(__SANITIZE_ADDRESS__)
-#define ROVCTL_NO_MALLOC_HOOKS 1
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer)
-#define ROVCTL_NO_MALLOC_HOOKS 1
-#endif
-#endif
-
-namespace {
-thread_local std::uint64_t t_allocations = 0;
-}
-
-#if !defined(ROVCTL_NO_MALLOC_HOOKS)
-extern "C" {
-void* __libc_malloc(std::size_t size);
-void* __libc_calloc(std::size_t count, std::size_t size);
-void* __libc_realloc(void* p, std::size_t size);
-void* __libc_memalign(std::size_t align, std::size_t size);
-
-void* malloc(std::size_t size) {
-  ++t_allocations;
-  return __libc_malloc(size);
-}
-void* calloc(std::size_t count, std::size_t size) {
-  ++t_allocations;
-  return __libc_calloc(count, size);
-}
-void* realloc(void* p, std::size_t size) {
-  ++t_allocations;
-  return __libc_realloc(p, size);
-}
-void* memalign(std::size_t align, std::size_t size) {
-  ++t_allocations;
-  return __libc_memalign(align, size);
-}
-void* aligned_alloc(std::size_t align, std::size_t size) {
-  ++t_allocations;
-  return __libc_memalign(align, size);
-}
-int posix_memalign(void** out, std::size_t align, std::size_t size) {
-  ++t_allocations;
-  *out = __libc_memalign(align, size);
-  return *out ? 0 : 12;  // ENOMEM
-}
-}
-#endif
+#include "malloc_counter.hpp"
 
 namespace rovctl::control {
 namespace {
 
 using namespace std::chrono_literals;
+using rovctl::testing::t_allocations;
 
 TEST(Realtime, CounterCounts) {
-#if defined(ROVCTL_NO_MALLOC_HOOKS)
-  GTEST_SKIP() << "malloc belongs to the sanitizer runtime";
-#endif
+  if (!rovctl::testing::malloc_hooks_installed()) {
+    GTEST_SKIP() << "malloc belongs to the sanitizer runtime";
+  }
   const std::uint64_t before = t_allocations;
-  std::vector<int>* v = new std::vector<int>(100);
+  // Through a volatile pointer, so that the compiler cannot elide the new/delete pair.
+  std::vector<int>* volatile v = new std::vector<int>(100);
   delete v;
   EXPECT_GE(t_allocations - before, 2u);
 }
 
 TEST(Realtime, TickCallsDoNotAllocate) {
-#if defined(ROVCTL_NO_MALLOC_HOOKS)
-  GTEST_SKIP() << "malloc belongs to the sanitizer runtime";
-#endif
+  if (!rovctl::testing::malloc_hooks_installed()) {
+    GTEST_SKIP() << "malloc belongs to the sanitizer runtime";
+  }
   const hal::VehicleGeometry geometry;
   const Eigen::Isometry3d T_body_cl = geometry.T_body_cl();
   const Eigen::Isometry3d docked =

@@ -1,7 +1,6 @@
 // The renderer runs inside the simulated 33 ms tick, so after start-up it must not touch the
 // heap in any scenario. hal_tests cannot link app/runtime's counting hooks (the layering keeps
-// hal below it), so this file interposes the malloc family itself, for this binary only, and
-// counts per thread. Under AddressSanitizer, whose runtime owns malloc, the count is skipped.
+// hal below it): the tests' own malloc counter counts per thread, for this binary only.
 #include <gtest/gtest.h>
 
 #include <cstddef>
@@ -11,74 +10,17 @@
 
 #include "hal/mock/scene_renderer.hpp"
 #include "hal/model/pose.hpp"
-
-#if defined(__SANITIZE_ADDRESS__)
-#define ROVCTL_NO_MALLOC_HOOKS 1
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer)
-#define ROVCTL_NO_MALLOC_HOOKS 1
-#endif
-#endif
-
-namespace {
-constinit thread_local std::uint64_t t_allocations = 0;
-}  // namespace
-
-#if !defined(ROVCTL_NO_MALLOC_HOOKS)
-// glibc's allocator under its exported internal names; the hooks count, then forward.
-extern "C" {
-void* __libc_malloc(std::size_t size);
-void* __libc_calloc(std::size_t count, std::size_t size);
-void* __libc_realloc(void* p, std::size_t size);
-void* __libc_memalign(std::size_t align, std::size_t size);
-void __libc_free(void* p);
-
-void* malloc(std::size_t size) noexcept {
-  ++t_allocations;
-  return __libc_malloc(size);
-}
-void* calloc(std::size_t count, std::size_t size) noexcept {
-  ++t_allocations;
-  return __libc_calloc(count, size);
-}
-void* realloc(void* p, std::size_t size) noexcept {
-  if (size != 0) ++t_allocations;
-  return __libc_realloc(p, size);
-}
-void* memalign(std::size_t align, std::size_t size) noexcept {
-  ++t_allocations;
-  return __libc_memalign(align, size);
-}
-void* aligned_alloc(std::size_t align, std::size_t size) noexcept {
-  ++t_allocations;
-  return __libc_memalign(align, size);
-}
-int posix_memalign(void** out, std::size_t align, std::size_t size) noexcept {
-  if (align < sizeof(void*) || (align & (align - 1)) != 0) return 22;  // EINVAL
-  ++t_allocations;
-  void* p = __libc_memalign(align, size);
-  if (p == nullptr) return 12;  // ENOMEM
-  *out = p;
-  return 0;
-}
-void free(void* p) noexcept { __libc_free(p); }
-}
-#endif
+#include "malloc_counter.hpp"
 
 namespace rovctl::hal::mock {
 namespace {
 
-bool hooks_installed() {
-#if defined(ROVCTL_NO_MALLOC_HOOKS)
-  return false;
-#else
-  return true;
-#endif
-}
+using rovctl::testing::malloc_hooks_installed;
+using rovctl::testing::t_allocations;
 
 // What the hooks see, so that a zero below means something.
 TEST(RenderAllocation, HooksCountThisThreadsAllocations) {
-  if (!hooks_installed()) GTEST_SKIP() << "AddressSanitizer owns malloc: no counting hooks";
+  if (!malloc_hooks_installed()) GTEST_SKIP() << "AddressSanitizer owns malloc: no counting hooks";
   const std::uint64_t before = t_allocations;
   const cv::Mat m(4, 4, CV_8UC3);  // OpenCV's allocator, in another library: not elided
   EXPECT_GE(t_allocations - before, 1u);
@@ -87,7 +29,7 @@ TEST(RenderAllocation, HooksCountThisThreadsAllocations) {
 class SceneRendererAllocation : public ::testing::TestWithParam<Scenario> {};
 
 TEST_P(SceneRendererAllocation, RenderAllocatesNothingAfterStartUp) {
-  if (!hooks_installed()) GTEST_SKIP() << "AddressSanitizer owns malloc: no counting hooks";
+  if (!malloc_hooks_installed()) GTEST_SKIP() << "AddressSanitizer owns malloc: no counting hooks";
   const StereoRig rig = make_parallel_rig(CameraModel{}, 0.178, 0.03);
   const MarkerModel marker = MarkerModel::standard();
   SceneConditions scene;
