@@ -8,7 +8,10 @@ packages=(build-essential cmake ninja-build pkg-config git
   libeigen3-dev libopencv-dev libyaml-cpp-dev libmodbus-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   python3 python3-pymodbus python3-serial python3-serial-asyncio socat clang-format libclang-rt-14-dev
-  povray python3-opencv python3-numpy)
+  povray python3-opencv python3-numpy
+  libcpp-httplib-dev chromium nodejs)
+# npm comes with some nodejs builds (NodeSource's) and is its own package in Debian's.
+command -v npm >/dev/null 2>&1 || packages+=(npm)
 
 missing=()
 for p in "${packages[@]}"; do
@@ -20,6 +23,12 @@ if [ ${#missing[@]} -gt 0 ]; then
   [ "$(id -u)" -ne 0 ] && sudo_cmd=(sudo)
   "${sudo_cmd[@]}" apt-get update -qq
   DEBIAN_FRONTEND=noninteractive "${sudo_cmd[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}"
+fi
+
+# The npm test peers (puppeteer-core for the browser test), pinned by tests/package-lock.json.
+if [ ! -d tests/node_modules/puppeteer-core ]; then
+  echo "setup: npm ci in tests/"
+  npm ci --prefix tests --no-audit --no-fund --loglevel=error
 fi
 
 build_dir=${1:-build}

@@ -110,6 +110,23 @@ int command_check(const Words& words) {
   } else {
     check.line(false, "thruster bus", error);
   }
+  // The operator view: reachable only from the vehicle unless the config says otherwise.
+  if (config.operator_view.enabled()) {
+    ListenAddress address;
+    std::string problem;
+    parse_listen_address(config.operator_view.listen, address, problem);  // validated at load
+    if (address.loopback()) {
+      check.line(true, "operator view",
+                 "on " + config.operator_view.listen + " (this machine only)");
+    } else {
+      std::cout << "WARN  operator view: listens on " << config.operator_view.listen
+                << ", reachable from the network"
+                << (config.operator_view.token.empty()
+                        ? " (read-only: no token)"
+                        : "; anyone with operator_view.token can ABORT and START")
+                << "\n";
+    }
+  }
   std::cout << (check.failures == 0
                     ? "pre-flight: all checks passed\n"
                     : "pre-flight: " + std::to_string(check.failures) + " check(s) failed\n");

@@ -5,6 +5,7 @@
 #include <chrono>
 #include <csignal>
 #include <iostream>
+#include <memory>
 
 #include "app/cli/cli_args.hpp"
 #include "app/cli/commands.hpp"
@@ -12,6 +13,7 @@
 #include "app/runtime/errors.hpp"
 #include "app/runtime/systemd_notify.hpp"
 #include "app/runtime/vehicle.hpp"
+#include "app/view/operator_view.hpp"
 
 namespace rovctl::app {
 namespace {
@@ -52,8 +54,23 @@ int command_run(const Words& words) {
 
   VehicleOptions options;
   options.telemetry_csv = args.get("--telemetry", "rovctl-telemetry.csv");
+  // The operator view's link outlives the vehicle (the loop writes to it); the view, declared
+  // after the vehicle, stops before it. Its port is bound before any device is opened.
+  std::unique_ptr<OperatorLink> link;
+  if (config.operator_view.enabled()) {
+    link = std::make_unique<OperatorLink>(
+        rig, std::chrono::duration_cast<std::chrono::nanoseconds>(
+                 std::chrono::duration<double>(1.0 / config.operator_view.frame_rate_hz)));
+    options.operator_link = link.get();
+  }
   Vehicle vehicle(config, rig, make_vehicle_backends(config, rig), options);
   std::string error;
+  std::unique_ptr<OperatorView> view;
+  if (link) {
+    view = std::make_unique<OperatorView>(config.operator_view, rig, config.marker, *link);
+    if (!view->start(error)) throw ConfigError(config.config_file + ": " + error);
+    if (!quiet) std::cerr << "rovctl run: operator view at " << view->url() << "\n";
+  }
   if (!vehicle.open(error)) throw ConfigError(error);
   const std::string devices =
       vehicle.backends().camera->name() + ", " + vehicle.backends().bus->name();

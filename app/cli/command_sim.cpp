@@ -3,7 +3,9 @@
 #include <unistd.h>
 #include <algorithm>
 #include <atomic>
+#include <chrono>
 #include <iostream>
+#include <memory>
 #include <mutex>
 #include <thread>
 
@@ -14,6 +16,7 @@
 #include "app/runtime/vehicle_backends.hpp"
 #include "app/tools/docking_trial.hpp"
 #include "app/tools/sim_report.hpp"
+#include "app/view/operator_view.hpp"
 #include "hal/mock/render_scenario.hpp"
 #include "hal/mock/sim_params.hpp"
 #include "hal/mock/trial_generator.hpp"
@@ -24,15 +27,18 @@ constexpr double kRechargeMaxTimeS = 400.0;
 }  // namespace
 
 int command_sim(const Words& words) {
-  const CliArgs args = CliArgs::parse("sim", words,
-                                      {"--config", "--trials", "--seed", "--out", "--jobs",
-                                       "--max-time", "--plots", "--scenario", "--mission"},
-                                      {"--realtime", "--json", "--verbose"});
+  const CliArgs args =
+      CliArgs::parse("sim", words,
+                     {"--config", "--trials", "--seed", "--out", "--jobs", "--max-time", "--plots",
+                      "--scenario", "--mission", "--serve", "--token", "--serve-linger"},
+                     {"--realtime", "--json", "--verbose", "--hold"});
   const std::string config_file =
       args.has("--config") ? args.get("--config") : default_config_path();
   const int trials = static_cast<int>(args.get_int("--trials", 1, 1, 100000));
   const auto seed = static_cast<std::uint64_t>(args.get_int("--seed", 1, 0, 1L << 40));
-  const bool realtime = args.has("--realtime");
+  // A live view shows the vehicle at its own pace: served trials run in real time, one by one.
+  const bool serve = args.has("--serve");
+  const bool realtime = args.has("--realtime") || serve;
   const bool json = args.has("--json");
   const std::string out_dir = args.get("--out");
   const int plots = static_cast<int>(args.get_int("--plots", 3, 0, 100000));
@@ -45,7 +51,11 @@ int command_sim(const Words& words) {
   // so the jitter figures are those of a single control loop.
   const int default_jobs =
       realtime ? 1 : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
-  const int jobs = static_cast<int>(args.get_int("--jobs", default_jobs, 1, 64));
+  const int jobs = serve ? 1 : static_cast<int>(args.get_int("--jobs", default_jobs, 1, 64));
+  const double linger_s = args.get_double("--serve-linger", 5.0, 0.0, 86400.0);
+  if (!serve && (args.has("--token") || args.has("--hold") || args.has("--serve-linger"))) {
+    throw UsageError("rovctl sim: --token, --hold and --serve-linger need --serve ADDR");
+  }
 
   AppConfig config = load_app_config(config_file);
   if (args.has("--mission")) {
@@ -71,8 +81,32 @@ int command_sim(const Words& words) {
     }
     config.sim.scenario = scenario;
   }
+  if (serve) {
+    config.operator_view.listen = args.get("--serve");
+    if (args.has("--token")) config.operator_view.token = args.get("--token");
+    ListenAddress address;
+    std::string error;
+    if (!parse_listen_address(config.operator_view.listen, address, error)) {
+      throw UsageError("rovctl sim: --serve: " + error);
+    }
+  }
   const hal::StereoRig rig = load_rig(config);
   const hal::mock::TrialGenerator generator(config.sim, config.vehicle, rig, config.marker);
+
+  std::unique_ptr<OperatorLink> link;
+  std::unique_ptr<OperatorView> view;
+  if (serve) {
+    link = std::make_unique<OperatorLink>(
+        rig, std::chrono::duration_cast<std::chrono::nanoseconds>(
+                 std::chrono::duration<double>(1.0 / config.operator_view.frame_rate_hz)));
+    view = std::make_unique<OperatorView>(config.operator_view, rig, config.marker, *link);
+    std::string error;
+    if (!view->start(error)) throw UsageError("rovctl sim: " + error);
+    std::cerr << "rovctl sim: operator view at " << view->url()
+              << (config.operator_view.token.empty() ? " (read-only: no --token)" : "") << "\n";
+    options.operator_link = link.get();
+    options.operator_hold_at_start = args.has("--hold");
+  }
 
   std::vector<TrialResult> results(static_cast<std::size_t>(trials));
   std::atomic<int> next{0};
@@ -113,6 +147,12 @@ int command_sim(const Words& words) {
   if (!failure.empty()) {
     std::cerr << "rovctl sim: " << failure << "\n";
     return kExitRuntimeFailure;
+  }
+
+  if (view) {
+    // The page keeps the final state for a while, so a watcher sees how the run ended.
+    std::this_thread::sleep_for(std::chrono::duration<double>(linger_s));
+    view->stop();
   }
 
   const SimSummary summary = summarise(results);

@@ -18,5 +18,6 @@ int command_thrusters(const Words& words);  // motor test
 int command_record(const Words& words);     // save timestamped stereo pairs
 int command_study(const Words& words);      // the paper's GA-parameter study
 int command_params(const Words& words);     // every declared parameter, as a markdown table
+int command_view(const Words& words);       // the operator view replaying a finished run
 
 }  // namespace rovctl::app

@@ -17,6 +17,10 @@ commands:
              [--mission dock|recharge] [--scenario NAME] [--jobs N] [--max-time S]
              closed-loop docking (or dock, charge, undock: --mission recharge) on the mock
              HAL; NAME: clear, turbid, side_light, bubbles, occluders, noisy, exposure
+  sim        --serve HOST:PORT [--token T] [--hold] [--serve-linger S] ...
+             the same, in real time, with the live operator view in a browser
+  view       --out DIR [--listen HOST:PORT] [--trial N] [--speed X]
+             the operator view replaying a finished `rovctl sim --out DIR` run
   estimate   --config FILE --left L.png --right R.png [--frames N] [--seed S] [--json]
              marker pose in the left camera frame from one stereo pair
   bench      [--config FILE] [--json]     estimator throughput and convergence
@@ -58,6 +62,7 @@ int main(int argc, char** argv) {
     if (command == "record") return command_record(words);
     if (command == "study") return command_study(words);
     if (command == "params") return command_params(words);
+    if (command == "view") return command_view(words);
     std::cerr << "rovctl: unknown command '" << command << "'\n" << kUsage;
     return kExitUsage;
   } catch (const UsageError& e) {

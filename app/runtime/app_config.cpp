@@ -31,6 +31,8 @@ void describe(hal::ParamVisitor& v, AppConfig& c) {
             [&c](hal::ParamVisitor& s) { describe(s, c.scheduler); });
   v.section("telemetry", "per-tick telemetry ring and its CSV writer",
             [&c](hal::ParamVisitor& s) { describe(s, c.telemetry); });
+  v.section("operator_view", "live operator view in a browser: cameras, estimate, ABORT/START",
+            [&c](hal::ParamVisitor& s) { describe(s, c.operator_view); });
   v.section("sim", "simulated world and mock HAL: dynamics, current, station, cameras, trials",
             [&c](hal::ParamVisitor& s) { hal::mock::describe(s, c.sim); });
 }
@@ -44,6 +46,13 @@ AppConfig load_app_config(const std::string& file) {
     config.estimator.validate();
   } catch (const std::invalid_argument& e) {
     throw ConfigError(file + ": " + e.what());
+  }
+  if (config.operator_view.enabled()) {
+    ListenAddress address;
+    std::string error;
+    if (!parse_listen_address(config.operator_view.listen, address, error)) {
+      throw ConfigError(file + ": operator_view.listen: " + error);
+    }
   }
   return config;
 }

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "app/runtime/cyclic_scheduler.hpp"
+#include "app/runtime/operator_view_params.hpp"
 #include "app/runtime/telemetry.hpp"
 #include "control/control_params.hpp"
 #include "drivers/camera_params.hpp"
@@ -31,6 +32,7 @@ struct AppConfig {
   control::MissionParams mission;
   SchedulerParams scheduler;
   TelemetryParams telemetry;
+  OperatorViewParams operator_view;
   hal::mock::SimParams sim;
 };
 

@@ -40,7 +40,8 @@ constexpr std::uint32_t capture_failed = 1u << 5;
 constexpr std::uint32_t armed = 1u << 6;
 constexpr std::uint32_t failsafe = 1u << 7;
 constexpr std::uint32_t dock_errors_valid = 1u << 8;  // dock_* hold the mission's axis errors
-constexpr std::uint32_t full_view = 1u << 9;  // the estimate is ok: every sphere in both views
+constexpr std::uint32_t full_view = 1u << 9;       // the estimate is ok: every sphere in both views
+constexpr std::uint32_t operator_hold = 1u << 10;  // the operator aborted: neutral until START
 }  // namespace telemetry_flag
 
 // One tick. Poses are T_cl_marker (marker in the left camera frame): translation in m, unit

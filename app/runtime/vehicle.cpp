@@ -31,6 +31,7 @@ Vehicle::Vehicle(const AppConfig& config, const hal::StereoRig& rig, VehicleBack
   loop_ = std::make_unique<VehicleLoop>(config, rig, *backends_.camera, *backends_.bus,
                                         backends_.sensors, *scheduler_,
                                         telemetry_on ? &ring_ : nullptr, options_.seed);
+  loop_->attach_operator(options_.operator_link);
 }
 
 Vehicle::~Vehicle() {

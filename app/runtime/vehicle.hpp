@@ -14,6 +14,7 @@
 
 #include "app/runtime/app_config.hpp"
 #include "app/runtime/cyclic_scheduler.hpp"
+#include "app/runtime/operator_link.hpp"
 #include "app/runtime/telemetry.hpp"
 #include "app/runtime/vehicle_backends.hpp"
 #include "app/runtime/vehicle_loop.hpp"
@@ -37,6 +38,7 @@ struct VehicleOptions {
   std::string telemetry_csv = "rovctl-telemetry.csv";  // with helper threads and telemetry on
   std::string log_prefix = "rovctl run: ";
   std::size_t min_ring_capacity = 0;
+  OperatorLink* operator_link = nullptr;  // the operator view's link, or none
 };
 
 class Vehicle {

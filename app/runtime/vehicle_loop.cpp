@@ -141,7 +141,30 @@ bool VehicleLoop::tick(const TickInfo& info) {
     in.fitness = estimate_.fitness;
     in.T_cl_marker = estimate_.T_cl_marker;
     in.contact = contact;
-    out = mission_.update(in);
+    if (operator_link_ != nullptr) {
+      if (operator_link_->take_abort() && !operator_hold_) {
+        operator_hold_ = true;
+        LoopEvent e;
+        e.time = now;
+        e.from = e.to = mission_.state();
+        e.reason = "operator ABORT: neutral, holding until START";
+        e.aborts = mission_.aborts();
+        queue(e);
+      }
+      if (operator_link_->take_start() && (operator_hold_ || mission_.finished())) {
+        operator_hold_ = false;
+        mission_.restart(now);  // logged by the mission as a restart
+        servo_.reset();
+        last_servo_time_ = std::chrono::nanoseconds{-1};
+      }
+    }
+    if (operator_hold_) {
+      // The mission is frozen where the operator stopped it; nothing is thrust.
+      out.state = mission_.state();
+      out.thrusters_enabled = false;
+    } else {
+      out = mission_.update(in);
+    }
     if (out.thrusters_enabled) {
       if (out.servo_active) {
         if (out.servo_restart) servo_.reset();
@@ -215,7 +238,7 @@ bool VehicleLoop::tick(const TickInfo& info) {
       e.action = fe.action;
       queue(e);
     }
-    if (telemetry_ != nullptr) {
+    if (telemetry_ != nullptr || operator_link_ != nullptr) {
       fill_schedule_fields(rec, info, scheduler_);
       rec.capture_ns = frame_.left_stamp.count();
       rec.mission_state = static_cast<std::int32_t>(out.state);
@@ -247,12 +270,16 @@ bool VehicleLoop::tick(const TickInfo& info) {
       rec.bus_status = static_cast<std::int32_t>(bus_status_);
       if (armed_) flags |= telemetry_flag::armed;
       if (failsafe_.tripped()) flags |= telemetry_flag::failsafe;
+      if (operator_hold_) flags |= telemetry_flag::operator_hold;
       rec.flags |= flags;
-      telemetry_->try_push(rec);
+      if (telemetry_ != nullptr) telemetry_->try_push(rec);
+      if (operator_link_ != nullptr)
+        operator_link_->publish(rec, have_images ? &frame_ : nullptr, now);
     }
   }
 
-  const bool ended = mission_.finished() || failsafe_.tripped();
+  // An operator hold waits for START (or the operator's stop), even after the mission ended.
+  const bool ended = failsafe_.tripped() || (mission_.finished() && !operator_hold_);
   if (!ended) {
     ended_at_ = std::chrono::nanoseconds{-1};
     return true;

@@ -12,6 +12,7 @@
 
 #include "app/runtime/app_config.hpp"
 #include "app/runtime/cyclic_scheduler.hpp"
+#include "app/runtime/operator_link.hpp"
 #include "app/runtime/telemetry.hpp"
 #include "control/attitude_stabilizer.hpp"
 #include "control/control_allocation_pseudo_inverse.hpp"
@@ -58,6 +59,13 @@ class VehicleLoop {
   // The operator ends the charge: the next tick in CHARGING starts UNDOCK. Any thread.
   void request_undock() { undock_requested_.store(true); }
 
+  // The operator's view and commands (ABORT: neutral and hold until START, which begins a new
+  // mission from SEARCH). Before the first tick; may be null.
+  void attach_operator(OperatorLink* link) { operator_link_ = link; }
+  bool operator_hold() const { return operator_hold_; }
+  // Starts held: neutral until the operator's START (a mission begun from the ground station).
+  void hold_for_operator() { operator_hold_ = true; }
+
   // Events queued by tick(); pop from the logging side (the same thread in simulation).
   bool pop_event(LoopEvent& e) { return events_.try_pop(e); }
 
@@ -79,6 +87,7 @@ class VehicleLoop {
   hal::Sensors* sensors_;
   CyclicScheduler& scheduler_;
   TelemetryRing* telemetry_;
+  OperatorLink* operator_link_ = nullptr;
 
   estimator::PoseEstimator estimator_;
   control::PdVisualServo servo_;
@@ -96,6 +105,7 @@ class VehicleLoop {
   hal::BusStatus bus_status_ = hal::BusStatus::ok;
   bool armed_ = false;
   bool disarmed_by_failsafe_ = false;
+  bool operator_hold_ = false;
   std::chrono::nanoseconds last_servo_time_{-1};
   double last_hold_force_n_ = 0.0;  // horizontal force commanded last tick (the hold's effort)
   std::atomic<bool> undock_requested_{false};

@@ -55,12 +55,14 @@ TrialResult run_docking_trial(const AppConfig& config, const hal::StereoRig& rig
   vehicle_options.seed = conditions.seed * 7919u + static_cast<std::uint64_t>(conditions.index);
   vehicle_options.helper_threads = false;  // this thread drains between ticks
   vehicle_options.min_ring_capacity = 64;
+  vehicle_options.operator_link = options.operator_link;
   Vehicle vehicle(config, rig, make_trial_backends(config, rig, conditions, options.realtime),
                   vehicle_options);
   std::string error;
   if (!vehicle.open(error)) throw std::runtime_error("mock HAL: " + error);
   if (!vehicle.arm(error)) throw std::runtime_error(error);
   VehicleLoop& loop = vehicle.loop();
+  if (options.operator_hold_at_start) loop.hold_for_operator();
   const hal::mock::SimulatedWorld& world = vehicle.backends().sim->world();
 
   const auto max_ticks = static_cast<std::uint64_t>(

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "app/runtime/app_config.hpp"
+#include "app/runtime/operator_link.hpp"
 #include "app/runtime/telemetry.hpp"
 #include "hal/mock/trial_generator.hpp"
 #include "hal/model/stereo_rig.hpp"
@@ -16,10 +17,12 @@
 namespace rovctl::app {
 
 struct TrialOptions {
-  bool realtime = false;      // pace by the wall clock (else virtual time)
-  double max_time_s = 150.0;  // sim time limit per trial
-  bool keep_records = false;  // keep every tick's telemetry (for CSV and plots)
-  bool log_events = false;    // print mission/failsafe events to stderr live
+  bool realtime = false;                  // pace by the wall clock (else virtual time)
+  double max_time_s = 150.0;              // sim time limit per trial
+  bool keep_records = false;              // keep every tick's telemetry (for CSV and plots)
+  bool log_events = false;                // print mission/failsafe events to stderr live
+  OperatorLink* operator_link = nullptr;  // a live operator view (rovctl sim --serve), or none
+  bool operator_hold_at_start = false;    // begin held: the operator's START begins the mission
 };
 
 // One sample per tick of the recharging side, for the plots (kept with keep_records).

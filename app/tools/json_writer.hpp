@@ -20,6 +20,10 @@ class JsonWriter {
   }
   JsonWriter& field(std::string_view key, bool value);
   JsonWriter& field(std::string_view key, std::string_view value);
+  // Without it a string literal would convert to bool, not to string_view.
+  JsonWriter& field(std::string_view key, const char* value) {
+    return field(key, std::string_view(value));
+  }
   JsonWriter& value(double value);  // an array element
 
   const std::string& str() const { return out_; }

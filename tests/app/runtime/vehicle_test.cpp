@@ -4,12 +4,15 @@
 
 #include <gtest/gtest.h>
 
+#include <opencv2/core.hpp>
+
 #include <algorithm>
 #include <array>
 #include <stdexcept>
 
 #include "app/runtime/allocation_counter.hpp"
 #include "app/runtime/app_config.hpp"
+#include "app/runtime/operator_link.hpp"
 #include "drivers/monotonic_clock.hpp"
 #include "hal/mock/trial_generator.hpp"
 
@@ -109,6 +112,87 @@ TEST(Vehicle, TickAllocatesNothingAfterStartUp) {
   EXPECT_EQ(allocations, 0u) << "allocations in 300 ticks of the application loop";
   TelemetryRing& ring = vehicle.telemetry();
   EXPECT_EQ(ring.size(), std::min<std::size_t>(ring.capacity(), 330));
+}
+
+// The operator view's link takes the record every tick and the images every few: still nothing
+// allocated on the tick, and the view's side gets both.
+TEST(Vehicle, TickWithTheOperatorLinkAllocatesNothing) {
+  Fixture f;
+  OperatorLink link(f.rig, std::chrono::milliseconds(100));
+  VehicleOptions options = f.sim_options();
+  options.operator_link = &link;
+  Vehicle vehicle(f.config, f.rig, make_trial_backends(f.config, f.rig, f.trial(), false), options);
+  std::string error;
+  ASSERT_TRUE(vehicle.open(error)) << error;
+  ASSERT_TRUE(vehicle.arm(error)) << error;
+  VehicleLoop& loop = vehicle.loop();
+  vehicle.scheduler().run([&](const TickInfo& info) { return loop.tick(info); }, 30);
+  std::uint64_t allocations = 0;
+  vehicle.scheduler().run(
+      [&](const TickInfo& info) {
+        AllocationProbe probe;
+        const bool more = loop.tick(info);
+        allocations += probe.allocations();
+        return more;
+      },
+      300);
+  EXPECT_EQ(allocations, 0u) << "allocations in 300 ticks with the operator link attached";
+  EXPECT_EQ(link.records().published(), 330u);
+  // Every third or fourth tick at 33 ms and a 100 ms image period.
+  EXPECT_GE(link.frames().published(), 330u / 4);
+  EXPECT_LE(link.frames().published(), 330u / 3 + 1);
+  const OperatorFrame* frame = link.frames().take();
+  ASSERT_NE(frame, nullptr);
+  EXPECT_EQ(frame->left_bgr.cols, f.rig.left.width_px);
+  EXPECT_GT(cv::norm(frame->left_bgr, cv::NORM_L1), 0.0) << "the copied image is not blank";
+  EXPECT_NE(frame->record.flags & telemetry_flag::estimate_valid, 0u);
+}
+
+// ABORT from the operator: neutral from the next tick, held (not ended) until START, which
+// begins a new mission from SEARCH under thrust again.
+TEST(Vehicle, OperatorAbortHoldsNeutralUntilStart) {
+  Fixture f;
+  OperatorLink link(f.rig, std::chrono::milliseconds(100));
+  VehicleBackends backends = make_trial_backends(f.config, f.rig, f.trial(), false);
+  hal::mock::SimulatedHal& sim = *backends.sim;
+  VehicleOptions options = f.sim_options();
+  options.operator_link = &link;
+  Vehicle vehicle(f.config, f.rig, std::move(backends), options);
+  std::string error;
+  ASSERT_TRUE(vehicle.open(error)) << error;
+  ASSERT_TRUE(vehicle.arm(error)) << error;
+  vehicle.run(60);
+  ASSERT_FALSE(all_neutral(sim.bus().last_command())) << "under thrust before the abort";
+  link.request_abort();
+  int neutral_ticks = 0;
+  bool held_every_tick = true;
+  vehicle.run(90, [&](const TickInfo&) {
+    neutral_ticks += all_neutral(sim.bus().last_command()) ? 1 : 0;
+    held_every_tick = held_every_tick && vehicle.loop().operator_hold();
+  });
+  EXPECT_EQ(neutral_ticks, 90) << "every tick after the abort is neutral, the first included";
+  EXPECT_TRUE(held_every_tick);
+  EXPECT_TRUE(sim.bus().armed()) << "a hold is not a disarm: START resumes without re-arming";
+  LoopEvent e;
+  bool logged = false;
+  while (vehicle.loop().pop_event(e)) {
+    logged = logged || std::string(e.reason).find("operator ABORT") != std::string::npos;
+  }
+  EXPECT_TRUE(logged) << "the abort is logged";
+
+  link.request_start();
+  bool thrust_again = false;
+  vehicle.run(60, [&](const TickInfo&) {
+    thrust_again = thrust_again || !all_neutral(sim.bus().last_command());
+  });
+  EXPECT_FALSE(vehicle.loop().operator_hold());
+  EXPECT_TRUE(thrust_again) << "START flies again";
+  bool restarted = false;
+  while (vehicle.loop().pop_event(e)) {
+    restarted = restarted || (!e.failsafe && e.to == control::MissionState::search &&
+                              std::string(e.reason) == "restart");
+  }
+  EXPECT_TRUE(restarted) << "START begins a new mission from SEARCH";
 }
 
 // On a real clock every stage of the tick shows its time, segmentation apart from estimation.
