@@ -30,7 +30,7 @@ constexpr const char* kAxisNames[6] = {"x (surge)", "y (sway)", "z (heave)",
                                        "roll",      "pitch",    "yaw"};
 
 void check_thrusters(const AppConfig& config) {
-  const std::string where = config_location(config, "vehicle.thrusters");
+  const std::string where = config_location(config, "vehicle.thrusters.thrusters");
   // The allocator's own checks (zero direction, channel off the bus or used twice, weights naming
   // no thruster) are config errors too: they must not first surface when the vehicle is built.
   try {

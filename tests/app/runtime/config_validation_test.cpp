@@ -68,40 +68,45 @@ TEST(ConfigValidation, TheShippedConfigsPassWithoutWarnings) {
 TEST(ConfigValidation, ALayoutThatCannotPushAServoAxisIsRejectedAtTheThrustersLine) {
   const TempDir t;
   // The case: every thruster along +x. Nothing pushes sideways, down or turns.
-  const std::string all_x =
-      t.write("all_x.yaml", "calibration: " + kCalibration +
-                                "\nvehicle:\n  thrusters:\n"
-                                "    - {name: a, position_m: [0.1, 0.1, 0], direction: [1, 0, 0], "
-                                "channel: 0}\n"
-                                "    - {name: b, position_m: [0.1, -0.1, 0], direction: [1, 0, 0], "
-                                "channel: 1}\n");
-  EXPECT_EQ(error_of(all_x), all_x +
-                                 ":3: vehicle.thrusters: no thruster pushes along the servo's y "
-                                 "(sway) axis: the layout cannot control it");
+  const std::string all_x = t.write(
+      "all_x.yaml", "calibration: " + kCalibration +
+                        "\nvehicle:\n  thrusters:\n    thrusters:\n"
+                        "      - {name: a, position_m: [0.1, 0.1, 0], direction: [1, 0, 0], "
+                        "channel: 0}\n"
+                        "      - {name: b, position_m: [0.1, -0.1, 0], direction: [1, 0, 0], "
+                        "channel: 1}\n");
+  EXPECT_EQ(error_of(all_x),
+            all_x +
+                ":4: vehicle.thrusters.thrusters: no thruster pushes along the servo's y "
+                "(sway) axis: the layout cannot control it");
   // Every axis has a thruster, but x and y can only be pushed together.
-  const std::string coupled = t.write(
-      "coupled.yaml", "calibration: " + kCalibration +
-                          "\nvehicle:\n  thrusters:\n"
-                          "    - {name: a, position_m: [0, 0, 0], direction: [0.7071, 0.7071, 0], "
-                          "channel: 0}\n"
-                          "    - {name: b, position_m: [0.2, 0, 0], direction: [0.7071, 0.7071, "
-                          "0], channel: 1}\n"
-                          "    - {name: c, position_m: [0, 0, 0], direction: [0, 0, 1], "
-                          "channel: 2}\n");
+  const std::string coupled =
+      t.write("coupled.yaml",
+              "calibration: " + kCalibration +
+                  "\nvehicle:\n  thrusters:\n    thrusters:\n"
+                  "      - {name: a, position_m: [0, 0, 0], direction: [0.7071, 0.7071, 0], "
+                  "channel: 0}\n"
+                  "      - {name: b, position_m: [0.2, 0, 0], direction: [0.7071, 0.7071, "
+                  "0], channel: 1}\n"
+                  "      - {name: c, position_m: [0, 0, 0], direction: [0, 0, 1], "
+                  "channel: 2}\n");
   const std::string e = error_of(coupled);
-  EXPECT_EQ(e.rfind(coupled + ":3: vehicle.thrusters: the thrusters cannot push the servo's axes "
-                              "(x (surge), y (sway), z (heave), yaw) independently",
-                    0),
-            0u)
+  EXPECT_EQ(
+      e.rfind(coupled +
+                  ":4: vehicle.thrusters.thrusters: the thrusters cannot push the servo's axes "
+                  "(x (surge), y (sway), z (heave), yaw) independently",
+              0),
+      0u)
       << e;
   // A channel used twice is the allocator's check, now at the same line before any device.
   const std::string twice =
       t.write("twice.yaml",
               "calibration: " + kCalibration +
-                  "\nvehicle:\n  thrusters:\n"
-                  "    - {name: a, position_m: [0, 0, 0], direction: [1, 0, 0], channel: 0}\n"
-                  "    - {name: b, position_m: [0, 0, 0], direction: [0, 1, 0], channel: 0}\n");
-  EXPECT_EQ(error_of(twice).rfind(twice + ":3: vehicle.thrusters: ", 0), 0u) << error_of(twice);
+                  "\nvehicle:\n  thrusters:\n    thrusters:\n"
+                  "      - {name: a, position_m: [0, 0, 0], direction: [1, 0, 0], channel: 0}\n"
+                  "      - {name: b, position_m: [0, 0, 0], direction: [0, 1, 0], channel: 0}\n");
+  EXPECT_EQ(error_of(twice).rfind(twice + ":4: vehicle.thrusters.thrusters: ", 0), 0u)
+      << error_of(twice);
 }
 
 TEST(ConfigValidation, AMarkerNeedsThreeColoursAtDistinctPlaces) {
@@ -170,9 +175,10 @@ TEST(ConfigValidation, ImplausibleCalibrationsAreRejectedAtTheirLine) {
   EXPECT_EQ(error_of(focal).rfind((t.dir / "focal_cal.yaml").string() + ":8: K1: ", 0), 0u)
       << error_of(focal);
   // A limit widened in the config is what the check uses.
+  const std::string k1_50 = t.calibration("k1_50_cal.yaml", "[ -0.12, 0.05,", "[ 50., 0.05,");
+  EXPECT_NE(error_of(config("k1_50.yaml", k1_50)), "");
   const std::string widened =
-      t.write("widened.yaml", "calibration: " + (t.dir / "k1_cal.yaml").string() +
-                                  "\nvalidation:\n  max_abs_k1: 2000000\n");
+      t.write("widened.yaml", "calibration: " + k1_50 + "\nvalidation:\n  max_abs_k1: 60\n");
   EXPECT_EQ(error_of(widened), "");
 }
 
@@ -213,10 +219,10 @@ TEST(ConfigValidation, NoContactSensorMeansVisionContactWithAWarning) {
 
 TEST(ConfigValidation, LocationsFallBackToTheNearestGivenKey) {
   const TempDir t;
-  const std::string file =
-      t.write("lines.yaml", "calibration: " + kCalibration + "\nvehicle:\n  thrusters:\n" +
-                                "    - {name: a, position_m: [0, 0, 0], direction: [1, 0, 0], "
-                                "channel: 0}\n");
+  const std::string file = t.write(
+      "lines.yaml", "calibration: " + kCalibration + "\nvehicle:\n  thrusters:\n    thrusters:\n" +
+                        "      - {name: a, position_m: [0, 0, 0], direction: [1, 0, 0], "
+                        "channel: 0}\n");
   AppConfig c;
   try {
     c = load_app_config(file);
@@ -226,11 +232,13 @@ TEST(ConfigValidation, LocationsFallBackToTheNearestGivenKey) {
   c.config_file = file;
   load_yaml_file(
       file, [&c](hal::ParamVisitor& v) { describe(v, c); }, &c.key_lines);
-  EXPECT_EQ(config_location(c, "vehicle.thrusters[0].direction"),
-            file + ":4: vehicle.thrusters[0].direction");
-  EXPECT_EQ(config_location(c, "vehicle.thrusters[0].max_forward_n"),
-            file + ":4: vehicle.thrusters[0].max_forward_n");
-  EXPECT_EQ(config_location(c, "vehicle.thrusters"), file + ":3: vehicle.thrusters");
+  EXPECT_EQ(config_location(c, "vehicle.thrusters.thrusters[0].direction"),
+            file + ":5: vehicle.thrusters.thrusters[0].direction");
+  EXPECT_EQ(config_location(c, "vehicle.thrusters.thrusters[0].max_forward_n"),
+            file + ":5: vehicle.thrusters.thrusters[0].max_forward_n");
+  EXPECT_EQ(config_location(c, "vehicle.thrusters.thrusters"),
+            file + ":4: vehicle.thrusters.thrusters");
+  EXPECT_EQ(config_location(c, "vehicle.probe_tip_m"), file + ":2: vehicle.probe_tip_m");
   EXPECT_EQ(config_location(c, "mission.kind"), file + ": mission.kind");
 }
 
