@@ -138,11 +138,11 @@ bool ReplayStereoCamera::open_folder(const std::string& folder, std::string& err
       largest = std::max(largest, size);
       // Every image's size from its header, here and not in the tick: one image declaring a
       // huge size would otherwise be decoded (gigabytes, seconds) inside the loop.
+      // A frame that cannot be read at all is the grab's to report and skip (a dive is not
+      // lost for one corrupt file); a readable header must declare the recording's size.
       hal::ImageHeader header;
-      if (!hal::read_image_header(*f, header, error)) {
-        error = where + error;
-        return false;
-      }
+      std::string unreadable;
+      if (!hal::read_image_header(*f, header, unreadable)) continue;
       if (image_width_px_ == 0) {
         image_width_px_ = header.width_px;
         image_height_px_ = header.height_px;
