@@ -2,16 +2,56 @@
 // or `image_width`/`image_height`, and D with 4, 5 or more coefficients (extra ones must be 0).
 #include "estimator/stereo_calibration.hpp"
 
+#include <cctype>
 #include <cmath>
 #include <filesystem>
+#include <fstream>
+#include <map>
 #include <opencv2/core.hpp>
 #include <stdexcept>
+
+#include "hal/primitives/image_header.hpp"
 
 namespace rovctl::estimator {
 namespace {
 
 [[noreturn]] void fail(const std::string& file, const std::string& what) {
   throw std::invalid_argument(file + ": " + what);
+}
+
+// The top-level key starting a line ("K1: !!opencv-matrix" -> "K1"), or empty.
+std::string top_level_key(const std::string& line) {
+  std::size_t n = 0;
+  while (n < line.size() && (std::isalnum(static_cast<unsigned char>(line[n])) || line[n] == '_'))
+    ++n;
+  std::size_t colon = n;
+  while (colon < line.size() && line[colon] == ' ') ++colon;
+  return n > 0 && colon < line.size() && line[colon] == ':' ? line.substr(0, n) : std::string();
+}
+
+// Each top-level key's first line. cv::FileStorage keeps one of two equal keys without a word,
+// so a key given twice is an error here, naming both lines.
+std::map<std::string, int> top_level_key_lines(const std::string& file) {
+  std::map<std::string, int> lines;
+  std::ifstream in(file);
+  std::string line;
+  for (int number = 1; std::getline(in, line); ++number) {
+    const std::string key = top_level_key(line);
+    if (key.empty()) continue;
+    const auto [it, first] = lines.emplace(key, number);
+    if (!first) {
+      fail(file + ":" + std::to_string(number),
+           "key '" + key + "' given twice (the first is line " + std::to_string(it->second) + ")");
+    }
+  }
+  return lines;
+}
+
+// "file:line: what" where the key's line is known.
+[[noreturn]] void fail_key(const std::string& file, const std::string& key,
+                           const std::string& what) {
+  const int line = calibration_key_line(file, key);
+  fail(line > 0 ? file + ":" + std::to_string(line) : file, what);
 }
 
 cv::Mat read_matrix(const cv::FileStorage& fs, const std::string& file, const std::string& key,
@@ -22,37 +62,39 @@ cv::Mat read_matrix(const cv::FileStorage& fs, const std::string& file, const st
   try {
     n >> m;
   } catch (const cv::Exception&) {
-    fail(file, "key '" + key + "' is not an OpenCV matrix");
+    fail_key(file, key, "key '" + key + "' is not an OpenCV matrix");
   }
-  if (m.empty()) fail(file, "key '" + key + "' is not an OpenCV matrix");
+  if (m.empty()) fail_key(file, key, "key '" + key + "' is not an OpenCV matrix");
   m.convertTo(m, CV_64F);
   if (m.rows == 1 && rows != 1 && m.cols == rows) m = m.t();  // a row vector where a column is due
   if (rows == 1 && m.cols == 1) m = m.t();                    // distortion given as a column
   if (m.rows != rows || m.cols < cols_min || m.cols > cols_max) {
-    fail(file, "key '" + key + "' has shape " + std::to_string(m.rows) + "x" +
-                   std::to_string(m.cols) + ", expected " + std::to_string(rows) + "x" +
-                   std::to_string(cols_min) +
-                   (cols_max != cols_min ? ".." + std::to_string(cols_max) : ""));
+    fail_key(file, key,
+             "key '" + key + "' has shape " + std::to_string(m.rows) + "x" +
+                 std::to_string(m.cols) + ", expected " + std::to_string(rows) + "x" +
+                 std::to_string(cols_min) +
+                 (cols_max != cols_min ? ".." + std::to_string(cols_max) : ""));
   }
   for (int r = 0; r < m.rows; ++r) {
     for (int c = 0; c < m.cols; ++c) {
       if (!std::isfinite(m.at<double>(r, c)))
-        fail(file, "key '" + key + "' has a non-finite value");
+        fail_key(file, key, "key '" + key + "' has a non-finite value");
     }
   }
   return m;
 }
 
 hal::CameraModel camera_from(const std::string& file, const cv::Mat& K, const cv::Mat& D,
-                             const std::string& kname, int width, int height) {
+                             const std::string& kname, const std::string& dname, int width,
+                             int height) {
   hal::CameraModel cam;
   cam.fx_px = K.at<double>(0, 0);
   cam.fy_px = K.at<double>(1, 1);
   cam.cx_px = K.at<double>(0, 2);
   cam.cy_px = K.at<double>(1, 2);
   if (!(cam.fx_px > 0 && cam.fy_px > 0))
-    fail(file, "key '" + kname + "': focal lengths must be > 0");
-  if (K.at<double>(2, 2) != 1.0) fail(file, "key '" + kname + "': K(2,2) must be 1");
+    fail_key(file, kname, "key '" + kname + "': focal lengths must be > 0");
+  if (K.at<double>(2, 2) != 1.0) fail_key(file, kname, "key '" + kname + "': K(2,2) must be 1");
   const double* d = D.ptr<double>(0);
   cam.k1 = d[0];
   cam.k2 = d[1];
@@ -61,7 +103,9 @@ hal::CameraModel camera_from(const std::string& file, const cv::Mat& K, const cv
   cam.k3 = D.cols > 4 ? d[4] : 0.0;
   for (int i = 5; i < D.cols; ++i) {
     if (d[i] != 0.0)
-      fail(file, "distortion coefficients beyond k3 (rational/thin prism) are not supported");
+      fail_key(file, dname,
+               "key '" + dname +
+                   "': distortion coefficients beyond k3 (rational/thin prism) are not supported");
   }
   cam.width_px = width;
   cam.height_px = height;
@@ -70,9 +114,19 @@ hal::CameraModel camera_from(const std::string& file, const cv::Mat& K, const cv
 
 }  // namespace
 
+int calibration_key_line(const std::string& file, const std::string& key) {
+  std::ifstream in(file);
+  std::string line;
+  for (int number = 1; std::getline(in, line); ++number) {
+    if (top_level_key(line) == key) return number;
+  }
+  return 0;
+}
+
 hal::StereoRig load_stereo_calibration(const std::string& file) {
   if (!std::filesystem::is_regular_file(file))
     fail(file, "cannot read calibration file (no such file)");
+  top_level_key_lines(file);  // no key given twice
   cv::FileStorage fs;
   try {
     if (!fs.open(file, cv::FileStorage::READ)) fail(file, "cannot open calibration file");
@@ -82,7 +136,8 @@ hal::StereoRig load_stereo_calibration(const std::string& file) {
   int width = 0, height = 0;
   if (!fs["image_size"].empty()) {
     cv::FileNode s = fs["image_size"];
-    if (!s.isSeq() || s.size() != 2) fail(file, "key 'image_size' must be [width, height]");
+    if (!s.isSeq() || s.size() != 2)
+      fail_key(file, "image_size", "key 'image_size' must be [width, height]");
     width = static_cast<int>(s[0]);
     height = static_cast<int>(s[1]);
   } else if (!fs["image_width"].empty() && !fs["image_height"].empty()) {
@@ -91,9 +146,10 @@ hal::StereoRig load_stereo_calibration(const std::string& file) {
   } else {
     fail(file, "missing key 'image_size' (or image_width/image_height)");
   }
-  if (width < 16 || height < 16 || width > 10000 || height > 10000) {
-    fail(file,
-         "key 'image_size': implausible " + std::to_string(width) + "x" + std::to_string(height));
+  if (width < 16 || height < 16 || width > hal::kMaxImageSidePx || height > hal::kMaxImageSidePx) {
+    fail_key(
+        file, fs["image_size"].empty() ? "image_width" : "image_size",
+        "key 'image_size': implausible " + std::to_string(width) + "x" + std::to_string(height));
   }
   const cv::Mat K1 = read_matrix(fs, file, "K1", 3, 3, 3);
   const cv::Mat D1 = read_matrix(fs, file, "D1", 1, 4, 14);
@@ -103,21 +159,22 @@ hal::StereoRig load_stereo_calibration(const std::string& file) {
   const cv::Mat T = read_matrix(fs, file, "T", 3, 1, 1);
 
   hal::StereoRig rig;
-  rig.left = camera_from(file, K1, D1, "K1", width, height);
-  rig.right = camera_from(file, K2, D2, "K2", width, height);
+  rig.left = camera_from(file, K1, D1, "K1", "D1", width, height);
+  rig.right = camera_from(file, K2, D2, "K2", "D2", width, height);
   Eigen::Matrix3d Rm;
   for (int r = 0; r < 3; ++r) {
     for (int c = 0; c < 3; ++c) Rm(r, c) = R.at<double>(r, c);
   }
   if ((Rm * Rm.transpose() - Eigen::Matrix3d::Identity()).norm() > 1e-3 ||
       Rm.determinant() < 0.99) {
-    fail(file, "key 'R' is not a rotation matrix");
+    fail_key(file, "R", "key 'R' is not a rotation matrix");
   }
   rig.T_cr_cl.linear() = Eigen::Quaterniond(Rm).normalized().toRotationMatrix();
   rig.T_cr_cl.translation() = Eigen::Vector3d(T.at<double>(0), T.at<double>(1), T.at<double>(2));
   if (rig.baseline_m() < 1e-3 || rig.baseline_m() > 5.0) {
-    fail(file, "key 'T': baseline " + std::to_string(rig.baseline_m()) +
-                   " m is implausible (units must be metres)");
+    fail_key(file, "T",
+             "key 'T': baseline " + std::to_string(rig.baseline_m()) +
+                 " m is implausible (units must be metres)");
   }
   return rig;
 }

@@ -8,8 +8,11 @@
 
 namespace rovctl::estimator {
 
-// Throws std::invalid_argument naming the file and the missing or malformed key.
+// Throws std::invalid_argument naming the file, the line (where the key is given) and the missing,
+// malformed or repeated key.
 hal::StereoRig load_stereo_calibration(const std::string& file);
+// The 1-based line where `file` gives the top-level `key`, 0 when it does not.
+int calibration_key_line(const std::string& file, const std::string& key);
 void save_stereo_calibration(const std::string& file, const hal::StereoRig& rig);
 
 }  // namespace rovctl::estimator

@@ -14,6 +14,7 @@
 #include "app/runtime/vehicle_backends.hpp"
 #include "app/tools/json_writer.hpp"
 #include "estimator/pose_estimator.hpp"
+#include "hal/primitives/image_header.hpp"
 
 namespace rovctl::app {
 namespace {
@@ -23,6 +24,10 @@ cv::Mat read_image(const std::string& path, const hal::CameraModel& camera,
   if (!std::filesystem::is_regular_file(path)) {
     throw ConfigError(path + ": cannot read image (no such file)");
   }
+  // The size from the header, before decoding: a small file can declare a huge image.
+  const std::string problem = hal::check_image_file(path, camera.width_px, camera.height_px,
+                                                    "the calibration " + calibration_file);
+  if (!problem.empty()) throw ConfigError(problem);
   cv::Mat image;
   try {
     image = cv::imread(path, cv::IMREAD_COLOR);

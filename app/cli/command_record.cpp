@@ -10,6 +10,7 @@
 #include "app/runtime/app_config.hpp"
 #include "app/runtime/errors.hpp"
 #include "app/runtime/vehicle_backends.hpp"
+#include "app/tools/output_folder.hpp"
 #include "drivers/camera_factory.hpp"
 #include "drivers/monotonic_clock.hpp"
 #include "drivers/replay/dive_recorder.hpp"
@@ -56,6 +57,7 @@ int command_record(const Words& words) {
   const long frames_wanted = args.get_int("--frames", 0, 1, 100000000);
   const std::string out = args.get("--out");
   const AppConfig config = load_app_config(args.get("--config"));
+  prepare_output_folder("record", out);  // before the camera is opened
 
   // The mock camera records the simulated world (in real time) at its start pose.
   VehicleBackends hw = make_vehicle_backends(config, load_rig(config));

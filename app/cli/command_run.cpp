@@ -48,7 +48,8 @@ int command_run(const Words& words) {
       CliArgs::parse("run", words, {"--config", "--max-ticks", "--telemetry"}, {"--quiet"});
   if (!args.has("--config")) throw UsageError("rovctl run: --config FILE is required");
   const AppConfig config = load_app_config(args.get("--config"));
-  const hal::StereoRig rig = load_rig(config);
+  const hal::StereoRig rig = load_rig(config);  // both validated: nothing is opened before
+  for (const std::string& w : config.warnings) std::cerr << "rovctl run: warning: " << w << "\n";
   const auto max_ticks = static_cast<std::uint64_t>(args.get_int("--max-ticks", 0, 0, 1L << 40));
   const bool quiet = args.has("--quiet");
 

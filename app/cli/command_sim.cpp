@@ -15,6 +15,7 @@
 #include "app/runtime/errors.hpp"
 #include "app/runtime/vehicle_backends.hpp"
 #include "app/tools/docking_trial.hpp"
+#include "app/tools/output_folder.hpp"
 #include "app/tools/sim_report.hpp"
 #include "app/view/operator_view.hpp"
 #include "hal/mock/render_scenario.hpp"
@@ -91,6 +92,9 @@ int command_sim(const Words& words) {
     }
   }
   const hal::StereoRig rig = load_rig(config);
+  for (const std::string& w : config.warnings) std::cerr << "rovctl sim: warning: " << w << "\n";
+  // Before any trial runs: a sweep must not find at its end that it cannot write its logs.
+  if (!out_dir.empty()) prepare_output_folder("sim", out_dir);
   const hal::mock::TrialGenerator generator(config.sim, config.vehicle, rig, config.marker);
 
   std::unique_ptr<OperatorLink> link;
@@ -130,11 +134,11 @@ int command_sim(const Words& words) {
       const TrialResult& r = results[static_cast<std::size_t>(i)];
       if (tty || !json) {
         std::cerr << (tty ? "\r" : "") << "trial " << i << ": "
-                  << (r.recharge  ? (trial_recharged(r) ? "docked, charged, departed"
-                                                        : "recharge incomplete")
-                      : r.success ? "docked"
-                      : r.docked  ? "docked off tolerance"
-                                  : "not docked")
+                  << (r.recharge        ? (trial_recharged(r) ? "docked, charged, departed"
+                                                              : "recharge incomplete")
+                      : trial_docked(r) ? "docked"
+                      : r.docked        ? "docked off tolerance"
+                                        : "not docked")
                   << " (" << r.final_state << ", " << r.sim_time_s << " s)  [" << finished << "/"
                   << trials << "]" << (tty ? "          " : "\n") << std::flush;
       }

@@ -15,6 +15,7 @@
 #include "app/runtime/app_config.hpp"
 #include "app/runtime/errors.hpp"
 #include "app/runtime/vehicle_backends.hpp"
+#include "app/tools/output_folder.hpp"
 #include "app/tools/study.hpp"
 #include "app/tools/study_report.hpp"
 
@@ -130,12 +131,7 @@ int run_study_command(const std::vector<std::string>& words, std::ostream& out, 
   const std::string out_dir = args.get("--out", "study-out");
   if (out_dir.empty())
     throw UsageError("rovctl study: --out needs a directory (" + std::string(kUsage) + ")");
-  std::error_code ec;
-  std::filesystem::create_directories(out_dir, ec);
-  if (ec || !std::filesystem::is_directory(out_dir)) {
-    throw std::runtime_error(out_dir + ": cannot create the output directory" +
-                             (ec ? " (" + ec.message() + ")" : std::string()));
-  }
+  prepare_output_folder("study", out_dir);  // before hours of work, not after
 
   std::string command_line = "rovctl study";
   for (const std::string& w : words) command_line += " " + w;

@@ -3,6 +3,7 @@
 #include <cstring>
 #include <exception>
 #include <iostream>
+#include <stdexcept>
 #include <string>
 
 #include "app/cli/commands.hpp"
@@ -69,6 +70,10 @@ int main(int argc, char** argv) {
     std::cerr << e.what() << "\n";
     return kExitUsage;
   } catch (const ConfigError& e) {
+    std::cerr << "rovctl " << command << ": " << e.what() << "\n";
+    return kExitUsage;
+  } catch (const std::invalid_argument& e) {
+    // A part's constructor rejecting its parameters at start-up (ARCHITECTURE.md, "Errors").
     std::cerr << "rovctl " << command << ": " << e.what() << "\n";
     return kExitUsage;
   } catch (const std::exception& e) {

@@ -35,11 +35,16 @@ void describe(hal::ParamVisitor& v, AppConfig& c) {
             [&c](hal::ParamVisitor& s) { describe(s, c.operator_view); });
   v.section("sim", "simulated world and mock HAL: dynamics, current, station, cameras, trials",
             [&c](hal::ParamVisitor& s) { hal::mock::describe(s, c.sim); });
+  v.section("validation",
+            "plausibility limits of the calibration, thruster layout and marker, checked before "
+            "any device is opened",
+            [&c](hal::ParamVisitor& s) { describe(s, c.validation); });
 }
 
 AppConfig load_app_config(const std::string& file) {
   AppConfig config;
-  load_yaml_file(file, [&config](hal::ParamVisitor& v) { describe(v, config); });
+  load_yaml_file(
+      file, [&config](hal::ParamVisitor& v) { describe(v, config); }, &config.key_lines);
   config.config_file = file;
   // Cross-field checks the per-key ranges cannot express, before any command touches hardware.
   try {
@@ -47,13 +52,7 @@ AppConfig load_app_config(const std::string& file) {
   } catch (const std::invalid_argument& e) {
     throw ConfigError(file + ": " + e.what());
   }
-  if (config.operator_view.enabled()) {
-    ListenAddress address;
-    std::string error;
-    if (!parse_listen_address(config.operator_view.listen, address, error)) {
-      throw ConfigError(file + ": operator_view.listen: " + error);
-    }
-  }
+  validate_app_config(config);
   return config;
 }
 

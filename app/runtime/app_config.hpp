@@ -3,7 +3,10 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
+#include "app/runtime/config_loader.hpp"
+#include "app/runtime/config_validation.hpp"
 #include "app/runtime/cyclic_scheduler.hpp"
 #include "app/runtime/operator_view_params.hpp"
 #include "app/runtime/telemetry.hpp"
@@ -34,11 +37,15 @@ struct AppConfig {
   TelemetryParams telemetry;
   OperatorViewParams operator_view;
   hal::mock::SimParams sim;
+  ValidationLimits validation;
+  KeyLines key_lines;                 // the line of every key the file gives
+  std::vector<std::string> warnings;  // what validation adjusted ("file:line: key: ...")
 };
 
 void describe(hal::ParamVisitor& v, AppConfig& config);
 
-// Loads and validates; throws ConfigError naming file, line and key.
+// Loads and validates (validate_app_config: layout, marker, contact source); throws ConfigError
+// naming file, line and key.
 AppConfig load_app_config(const std::string& file);
 
 // The config shipped with rovctl (deploy/config/sim.yaml), installed or in the source tree.

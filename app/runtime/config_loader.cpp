@@ -22,14 +22,18 @@ std::string format_number(double v) {
 class YamlLoader final : public hal::ParamVisitor {
  public:
   YamlLoader(YAML::Node node, std::string prefix, const std::string& file,
-             const std::string& base_dir)
-      : node_(std::move(node)), prefix_(std::move(prefix)), file_(file), base_dir_(base_dir) {}
+             const std::string& base_dir, KeyLines* lines)
+      : node_(std::move(node)),
+        prefix_(std::move(prefix)),
+        file_(file),
+        base_dir_(base_dir),
+        lines_(lines) {}
 
   void section(std::string_view key, std::string_view,
                const std::function<void(hal::ParamVisitor&)>& body) override {
     const YAML::Node n = child(key);
     if (n && !n.IsNull() && !n.IsMap()) fail(n, key, "expected a mapping");
-    YamlLoader inner(n && n.IsMap() ? n : YAML::Node(), path_of(key), file_, base_dir_);
+    YamlLoader inner(n && n.IsMap() ? n : YAML::Node(), path_of(key), file_, base_dir_, lines_);
     inner.line_ = n ? n.Mark().line + 1 : line_;
     body(inner);
     inner.finish();
@@ -114,8 +118,9 @@ class YamlLoader final : public hal::ParamVisitor {
       const YAML::Node e = n[i];
       const std::string name = path_of(key) + "[" + std::to_string(i) + "]";
       if (!e.IsMap()) fail(e, key, "element " + std::to_string(i) + ": expected a mapping");
-      YamlLoader inner(e, name, file_, base_dir_);
+      YamlLoader inner(e, name, file_, base_dir_, lines_);
       inner.line_ = e.Mark().line + 1;
+      if (lines_ != nullptr) (*lines_)[name] = inner.line_;
       element(inner, i);
       inner.finish();
     }
@@ -130,17 +135,10 @@ class YamlLoader final : public hal::ParamVisitor {
       const std::string key = kv.first.as<std::string>();
       if (!present.insert(key).second) {
         fail(kv.first, key,
-             "given twice (the first is line " + std::to_string(first_line(key)) + ")");
+             "given twice (the first is line " + std::to_string(line_of_key(key)) + ")");
       }
       if (seen_.count(key) == 0) fail(kv.first, key, "unknown key");
     }
-  }
-
-  int first_line(const std::string& key) const {
-    for (const auto& kv : node_) {
-      if (kv.first.as<std::string>() == key) return kv.first.Mark().line + 1;
-    }
-    return line_;
   }
 
   int line_ = 0;
@@ -150,7 +148,19 @@ class YamlLoader final : public hal::ParamVisitor {
     seen_.insert(std::string(key));
     if (!node_ || !node_.IsMap()) return YAML::Node(YAML::NodeType::Undefined);
     const YAML::Node& const_node = node_;
-    return const_node[std::string(key)];
+    const YAML::Node n = const_node[std::string(key)];
+    if (lines_ != nullptr && n.IsDefined() && !n.Mark().is_null()) {
+      (*lines_)[path_of(key)] = line_of_key(key);
+    }
+    return n;
+  }
+
+  // The line of the key itself (a block mapping's value starts on the line after it).
+  int line_of_key(std::string_view key) const {
+    for (const auto& kv : node_) {
+      if (kv.first.as<std::string>() == key) return kv.first.Mark().line + 1;
+    }
+    return line_;
   }
 
   bool present(const YAML::Node& n, std::string_view key, bool required) const {
@@ -195,15 +205,16 @@ class YamlLoader final : public hal::ParamVisitor {
   std::string prefix_;
   const std::string& file_;
   const std::string& base_dir_;
+  KeyLines* lines_;
   std::set<std::string> seen_;
 };
 
 void load_node(const YAML::Node& root, const std::string& name, const std::string& base_dir,
-               const std::function<void(hal::ParamVisitor&)>& describe) {
+               const std::function<void(hal::ParamVisitor&)>& describe, KeyLines* lines) {
   if (root && !root.IsNull() && !root.IsMap()) {
     throw ConfigError(name + ":1: the top level must be a mapping of sections");
   }
-  YamlLoader loader(root, "", name, base_dir);
+  YamlLoader loader(root, "", name, base_dir, lines);
   loader.line_ = 1;
   describe(loader);
   loader.finish();
@@ -276,7 +287,7 @@ class DocVisitor final : public hal::ParamVisitor {
 }  // namespace
 
 void load_yaml_file(const std::string& file,
-                    const std::function<void(hal::ParamVisitor&)>& describe) {
+                    const std::function<void(hal::ParamVisitor&)>& describe, KeyLines* lines) {
   if (!std::filesystem::is_regular_file(file)) {
     throw ConfigError(file + ": cannot read config file (no such file)");
   }
@@ -290,11 +301,11 @@ void load_yaml_file(const std::string& file,
     throw ConfigError(file + ": cannot read config file: " + e.msg);
   }
   const std::string base_dir = std::filesystem::path(file).parent_path().string();
-  load_node(root, file, base_dir, describe);
+  load_node(root, file, base_dir, describe, lines);
 }
 
 void load_yaml_text(const std::string& text, const std::string& name, const std::string& base_dir,
-                    const std::function<void(hal::ParamVisitor&)>& describe) {
+                    const std::function<void(hal::ParamVisitor&)>& describe, KeyLines* lines) {
   YAML::Node root;
   try {
     root = YAML::Load(text);
@@ -302,7 +313,7 @@ void load_yaml_text(const std::string& text, const std::string& name, const std:
     throw ConfigError(name + ":" + std::to_string(e.mark.line + 1) +
                       ": YAML syntax error: " + e.msg);
   }
-  load_node(root, name, base_dir, describe);
+  load_node(root, name, base_dir, describe, lines);
 }
 
 std::string describe_parameters_markdown(const std::function<void(hal::ParamVisitor&)>& describe) {

@@ -1,6 +1,7 @@
 // Backend selection for the vehicle commands.
 #include "app/runtime/vehicle_backends.hpp"
 
+#include "app/runtime/config_validation.hpp"
 #include "app/runtime/errors.hpp"
 #include "drivers/camera_factory.hpp"
 #include "drivers/monotonic_clock.hpp"
@@ -11,11 +12,15 @@
 namespace rovctl::app {
 
 hal::StereoRig load_rig(const AppConfig& config) {
+  hal::StereoRig rig;
   try {
-    return estimator::load_stereo_calibration(config.calibration_file);
+    rig = estimator::load_stereo_calibration(config.calibration_file);
   } catch (const std::exception& e) {
-    throw ConfigError(e.what());  // names the calibration file and the key
+    throw ConfigError(e.what());  // names the calibration file, line and key
   }
+  // The same plausibility for every command: `run` must not arm on what `check` rejects.
+  validate_stereo_rig(rig, config.calibration_file, config.validation);
+  return rig;
 }
 
 namespace {

@@ -35,7 +35,8 @@ VehicleBackends make_vehicle_backends(const AppConfig& config, const hal::Stereo
 VehicleBackends make_trial_backends(const AppConfig& config, const hal::StereoRig& rig,
                                     const hal::mock::TrialConditions& trial, bool realtime);
 
-// Loads the calibration named by the config; ConfigError naming the file on failure.
+// Loads the calibration named by the config and checks its plausibility (validate_stereo_rig);
+// ConfigError naming the file, line and key on failure.
 hal::StereoRig load_rig(const AppConfig& config);
 
 }  // namespace rovctl::app

@@ -68,7 +68,7 @@ SimSummary summarise(const std::vector<TrialResult>& results) {
   double estimator_ms = 0.0;
   for (const TrialResult& r : results) {
     if (r.docked) ++s.captured;
-    if (r.success) ++s.docked;
+    if (trial_docked(r)) ++s.docked;  // never the cached flag alone: the mission must say DOCKED
     if (r.docked) {
       times.push_back(r.time_to_dock_s);
       lateral.push_back(r.lateral_error_mm);
@@ -139,8 +139,9 @@ std::string summary_text(const SimSummary& s, const std::vector<TrialResult>& re
     std::snprintf(
         line, sizeof(line), "%5d  %7.2f  %11.3f  %-9s  %-7s  %6d  %8.1f  %10.1f  %7.2f  %10.1f\n",
         r.conditions.index, r.conditions.distance_m, r.conditions.current_mean_world_mps.norm(),
-        r.success ? "DOCKED" : (r.docked ? "off-tol" : "no dock"), r.final_state.c_str(), r.aborts,
-        r.time_to_dock_s, r.lateral_error_mm, r.yaw_error_deg, r.estimate_error_mm_median);
+        trial_docked(r) ? "DOCKED" : (r.docked ? "off-tol" : "no dock"), r.final_state.c_str(),
+        r.aborts, r.time_to_dock_s, r.lateral_error_mm, r.yaw_error_deg,
+        r.estimate_error_mm_median);
     o << line;
   }
   std::snprintf(
@@ -211,7 +212,7 @@ void plot_trial(const TrialResult& trial, const std::string& png_path) {
                 "deg, %.1f s)",
                 trial.conditions.index, trial.conditions.distance_m,
                 trial.conditions.current_mean_world_mps.norm(),
-                trial.success ? "DOCKED" : trial.final_state.c_str(), trial.lateral_error_mm,
+                trial_docked(trial) ? "DOCKED" : trial.final_state.c_str(), trial.lateral_error_mm,
                 trial.yaw_error_deg, trial.time_to_dock_s);
   if (trial.recharge) {
     const RechargeResult& c = trial.charge;
@@ -292,8 +293,8 @@ void write_sim_outputs(const std::string& dir, const std::vector<TrialResult>& r
     const auto& c = r.conditions;
     table << c.index << ',' << c.seed << ',' << c.distance_m << ',' << c.bearing_deg << ','
           << c.heading_offset_deg << ',' << c.current_mean_world_mps.norm() << ','
-          << c.image_noise_sigma << ',' << r.success << ',' << r.docked << ',' << r.final_state
-          << ',' << r.aborts << ',' << r.failsafe << ',' << r.time_to_dock_s << ','
+          << c.image_noise_sigma << ',' << trial_docked(r) << ',' << r.docked << ','
+          << r.final_state << ',' << r.aborts << ',' << r.failsafe << ',' << r.time_to_dock_s << ','
           << r.lateral_error_mm << ',' << r.yaw_error_deg << ',' << r.sim_time_s << ',' << r.ticks
           << ',' << r.overruns << ',' << r.jitter_p99_ms << ',' << r.estimator_ms_mean << ','
           << r.recognised_fraction << ',' << r.estimate_error_mm_median;
@@ -323,7 +324,8 @@ void write_sim_outputs(const std::string& dir, const std::vector<TrialResult>& r
     write_file_atomically(dir + name, csv);
     // The first few, and every trial that did not dock within tolerance: those are the ones a
     // person needs to look at.
-    if (r.conditions.index < plot_trials || !r.success || (r.recharge && !trial_recharged(r))) {
+    if (r.conditions.index < plot_trials || !trial_docked(r) ||
+        (r.recharge && !trial_recharged(r))) {
       std::snprintf(name, sizeof(name), "/trial_%03d.png", r.conditions.index);
       plot_trial(r, dir + name);
     }

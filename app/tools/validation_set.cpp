@@ -10,6 +10,7 @@
 #include <stdexcept>
 
 #include "estimator/pose_estimator.hpp"
+#include "hal/primitives/image_header.hpp"
 #include "hal/primitives/percentile.hpp"
 
 namespace rovctl::app {
@@ -32,7 +33,11 @@ double angle_deg(const Eigen::Matrix3d& a, const Eigen::Matrix3d& b) {
   return Eigen::AngleAxisd(a.transpose() * b).angle() * 180.0 / M_PI;
 }
 
-cv::Mat read_png(const std::string& path) {
+cv::Mat read_png(const std::string& path, const hal::CameraModel& camera) {
+  // The size from the header, before decoding: a small file can declare a huge image.
+  const std::string problem =
+      hal::check_image_file(path, camera.width_px, camera.height_px, "the calibration");
+  if (!problem.empty()) throw std::invalid_argument(problem);
   cv::Mat image = cv::imread(path, cv::IMREAD_COLOR);
   if (image.empty()) throw std::invalid_argument(path + ": cannot read image");
   return image;
@@ -119,8 +124,8 @@ std::vector<ConditionScore> score_validation_set(const hal::StereoRig& rig,
   std::vector<double> all_ms;
   for (std::size_t i = 0; i < pairs.size(); ++i) {
     const ValidationPair& pair = pairs[i];
-    const cv::Mat left = read_png(pair.left_png);
-    const cv::Mat right = read_png(pair.right_png);
+    const cv::Mat left = read_png(pair.left_png, rig.left);
+    const cv::Mat right = read_png(pair.right_png, rig.right);
     estimator::PoseEstimator estimator(rig, marker, params, 1 + i);
     estimator::PoseEstimate e;
     for (int f = 0; f < frames; ++f) {

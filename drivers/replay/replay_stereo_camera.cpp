@@ -10,6 +10,7 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include "drivers/replay/recording_format.hpp"
+#include "hal/primitives/image_header.hpp"
 
 namespace rovctl::drivers {
 
@@ -101,6 +102,7 @@ bool ReplayStereoCamera::open(std::string& error) {
 
 bool ReplayStereoCamera::open_folder(const std::string& folder, std::string& error) {
   std::vector<RecordedFrame> rows;
+  image_width_px_ = image_height_px_ = 0;
   if (!read_frames_csv(folder, rows, error)) {
     error = "camera.replay.path: " + error;
     return false;
@@ -134,6 +136,23 @@ bool ReplayStereoCamera::open_folder(const std::string& folder, std::string& err
         return false;
       }
       largest = std::max(largest, size);
+      // Every image's size from its header, here and not in the tick: one image declaring a
+      // huge size would otherwise be decoded (gigabytes, seconds) inside the loop.
+      // A frame that cannot be read at all is the grab's to report and skip (a dive is not
+      // lost for one corrupt file); a readable header must declare the recording's size.
+      hal::ImageHeader header;
+      std::string unreadable;
+      if (!hal::read_image_header(*f, header, unreadable)) continue;
+      if (image_width_px_ == 0) {
+        image_width_px_ = header.width_px;
+        image_height_px_ = header.height_px;
+      }
+      const std::string problem = hal::image_size_problem(
+          *f, header, image_width_px_, image_height_px_, "the recording's first image");
+      if (!problem.empty()) {
+        error = where + problem;
+        return false;
+      }
     }
     entries_.push_back(std::move(e));
   }
@@ -227,6 +246,19 @@ bool ReplayStereoCamera::read_image(const std::string& file, cv::Mat& bgr) {
   ::close(fd);
   if (got != size || size == 0) {
     last_error_ = "replay: " + file + ": short read";
+    return false;
+  }
+  // The header again (the file may have changed since open): never decode a size not checked.
+  hal::ImageHeader header;
+  std::string problem;
+  if (!hal::parse_image_header(file_buffer_.data(), size, header, problem)) {
+    problem = file + ": " + problem;
+  } else {
+    problem = hal::image_size_problem(file, header, image_width_px_, image_height_px_,
+                                      "the recording's first image");
+  }
+  if (!problem.empty()) {
+    last_error_ = "replay: " + problem;
     return false;
   }
   // OpenCV 4.6's decode-into-destination overload cannot report a failed decode (it returns the

@@ -58,6 +58,9 @@ class ReplayStereoCamera final : public hal::StereoCamera {
   bool tick_mode_ = false;
   bool video_ = false;
   std::string source_;  // for name() and errors
+  // The size of a recording's images (from the first image's header); every other must match.
+  int image_width_px_ = 0;
+  int image_height_px_ = 0;
   std::string left_video_;
   std::string right_video_;
   std::vector<Entry> entries_;  // image sequence: one per frame; video: empty

@@ -284,6 +284,32 @@ std::string open_error(const ReplayCameraParams& p) {
   return error;
 }
 
+// A PNG whose header declares `w` x `h` and holds no pixels: decoding it would cost gigabytes.
+void write_png_header(const std::string& file, unsigned w, unsigned h) {
+  std::string png = "\x89PNG\r\n\x1a\n" + std::string("\0\0\0\x0d", 4) + "IHDR";
+  for (unsigned v : {w, h}) {
+    for (int s = 24; s >= 0; s -= 8) png += static_cast<char>((v >> s) & 0xFF);
+  }
+  png += std::string("\x08\x02\0\0\0\0\0\0\0", 9);
+  std::ofstream(file, std::ios::binary | std::ios::trunc) << png;
+}
+
+TEST(ReplayStereoCamera, ImageSizesAreCheckedFromTheHeadersAtOpen) {
+  TempDir dir;
+  const std::string folder = record(dir);
+  write_png_header(folder + "/left/000002.png", 30000, 30000);
+  const std::string huge = open_error(replay_params(folder, "tick", false));
+  EXPECT_NE(huge.find("frames.csv:4: "), std::string::npos) << huge;
+  EXPECT_NE(huge.find("left/000002.png: PNG header declares 30000x30000 pixels, beyond the limit"),
+            std::string::npos)
+      << huge;
+  write_png_header(folder + "/left/000002.png", 64, 48);
+  const std::string other = open_error(replay_params(folder, "tick", false));
+  EXPECT_NE(other.find("left/000002.png: image is 64x48 but the recording's first image says"),
+            std::string::npos)
+      << other;
+}
+
 TEST(ReplayStereoCamera, BadInputIsAClearError) {
   TempDir dir;
   EXPECT_NE(

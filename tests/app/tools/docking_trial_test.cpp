@@ -11,6 +11,7 @@
 
 #include "app/runtime/app_config.hpp"
 #include "app/runtime/vehicle_backends.hpp"
+#include "app/tools/sim_report.hpp"
 #include "hal/mock/trial_generator.hpp"
 
 namespace rovctl::app {
@@ -41,6 +42,31 @@ TEST(DockingTrial, BusTimeoutMakesTheVehicleSafe) {
   const TrialResult r = run_docking_trial(f.config, f.rig, generator.make(0, 1), TrialOptions{});
   EXPECT_FALSE(r.docked);
   EXPECT_EQ(r.failsafe, "thruster bus fault");
+}
+
+// The case: the contact switch is relied on and never reads (sensors lost from the
+// start). The simulator may capture the probe, but the mission never reaches DOCKED, and the
+// report must not count the trial docked.
+TEST(DockingTrial, ATrialIsNotDockedUnlessTheMissionReachedDocked) {
+  Fixture f;
+  f.config.mission.contact_switch = true;
+  f.config.mission.contact_from_vision = false;
+  f.config.sim.faults.sensor_lost_at_s = 0.0;
+  const hal::mock::TrialGenerator generator(f.config.sim, f.config.vehicle, f.rig, f.config.marker);
+  TrialOptions options;
+  options.max_time_s = 60.0;
+  const TrialResult r = run_docking_trial(f.config, f.rig, generator.make(2, 1), options);
+  EXPECT_FALSE(r.mission_docked) << "final state " << r.final_state;
+  EXPECT_NE(r.final_state, "docked");
+  EXPECT_FALSE(trial_docked(r));
+  const SimSummary s = summarise({r});
+  EXPECT_EQ(s.docked, 0);
+  EXPECT_EQ(s.captured, r.docked ? 1 : 0);
+  EXPECT_NE(summary_text(s, {r}).find("docked 0 of 1"), std::string::npos);
+  // Even a result whose cached flag says otherwise is judged by the mission's own state.
+  TrialResult forged = r;
+  forged.success = true;
+  EXPECT_EQ(summarise({forged}).docked, 0);
 }
 
 // The closed loop on a fixed seed: the real estimator on rendered images, the real controller,
