@@ -13,7 +13,7 @@ struct OperatorViewParams {
   std::string token;   // required by POST /abort and /start; empty: commands refused
   double frame_rate_hz = 10.0;
   int jpeg_quality = 70;
-  int max_clients = 32;
+  int max_clients = 64;
 
   bool enabled() const { return !listen.empty(); }
 };

@@ -60,6 +60,13 @@ TrialResult run_docking_trial(const AppConfig& config, const hal::StereoRig& rig
                   vehicle_options);
   std::string error;
   if (!vehicle.open(error)) throw std::runtime_error("mock HAL: " + error);
+  if (options.realtime) {
+    // Paced by the wall clock, a trial is a control loop like `rovctl run`'s: the same
+    // scheduler.realtime settings (SCHED_FIFO, mlockall, CPU pinning) on this trial's thread.
+    const RealtimeSetupResult& rt = vehicle.enter_realtime();
+    for (const auto& w : rt.warnings) result.events.push_back("realtime set-up: " + w);
+    for (const auto& a : rt.applied) result.events.push_back("realtime set-up: " + a);
+  }
   if (!vehicle.arm(error)) throw std::runtime_error(error);
   VehicleLoop& loop = vehicle.loop();
   if (options.operator_hold_at_start) loop.hold_for_operator();

@@ -3,7 +3,7 @@
 without clients and its second half with N clients each streaming /stream.mjpg and /events.
 Reads the run's own telemetry (tick jitter = wakeup - deadline, skipped releases) per half.
 
-usage: operator_view_load.py ROVCTL [--clients 20] [--seconds 60] [--out DIR]
+usage: operator_view_load.py ROVCTL [--clients 20] [--seconds 60] [--out DIR] [--no-sched-fifo]
 On demand (about 2 x SECONDS + 10 s); the figures go in the issue note, not in CI.
 """
 import argparse
@@ -43,11 +43,25 @@ def main():
     ap.add_argument("--clients", type=int, default=20)
     ap.add_argument("--seconds", type=float, default=60.0)
     ap.add_argument("--out", default=None)
+    ap.add_argument("--no-sched-fifo", dest="sched_fifo", action="store_false",
+                    help="leave the tick at SCHED_OTHER (default: SCHED_FIFO 80 + mlockall)")
     a = ap.parse_args()
     out = a.out or tempfile.mkdtemp(prefix="rovctl-view-load-")
+    # The shipped sim config with the vehicle's real-time settings, as `rovctl run` flies.
+    repo = os.path.dirname(os.path.dirname(os.path.dirname(os.path.dirname(
+        os.path.abspath(__file__)))))
+    conf_dir = os.path.join(repo, "deploy", "config")
+    text = open(os.path.join(conf_dir, "sim.yaml")).read()
+    text = re.sub(r"^calibration:\s*(\S+)",
+                  lambda m: "calibration: " + os.path.join(conf_dir, m.group(1)), text, flags=re.M)
+    text += ("\nscheduler:\n  realtime:\n    sched_fifo: %s\n    priority: 80\n"
+             "    mlockall: %s\n" % (("true",) * 2 if a.sched_fifo else ("false",) * 2))
+    config = os.path.join(out, "sim-load.yaml")
+    open(config, "w").write(text)
     total = 2 * a.seconds + 8
     # Held: the vehicle keeps estimating and publishing every tick but does not dock and end.
-    p = subprocess.Popen([a.rovctl, "sim", "--serve", "127.0.0.1:0", "--hold", "--realtime",
+    p = subprocess.Popen([a.rovctl, "sim", "--config", config, "--serve", "127.0.0.1:0", "--hold",
+                          "--realtime",
                           "--max-time", str(total), "--out", out, "--serve-linger", "0"],
                          stderr=subprocess.PIPE, text=True)
     url = None
