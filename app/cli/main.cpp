@@ -15,8 +15,11 @@ constexpr const char* kUsage = R"(usage: rovctl <command> [options]
 commands:
   sim        [--config FILE] [--trials N] [--seed S] [--realtime] [--json] [--out DIR]
              [--mission dock|recharge] [--scenario NAME] [--jobs N] [--max-time S]
+             [--first-trial I] [--charge-fault FAULT]
              closed-loop docking (or dock, charge, undock: --mission recharge) on the mock
-             HAL; NAME: clear, turbid, side_light, bubbles, occluders, noisy, exposure
+             HAL; NAME: clear, turbid, side_light, bubbles, occluders, noisy, exposure;
+             FAULT (recharge, injected mid-charge): none, knock, knocks, surge, charger,
+             operator, camera
   estimate   --config FILE --left L.png --right R.png [--frames N] [--seed S] [--json]
              marker pose in the left camera frame from one stereo pair
   bench      [--config FILE] [--json]     estimator throughput and convergence

@@ -20,6 +20,9 @@ struct TrialOptions {
   double max_time_s = 150.0;  // sim time limit per trial
   bool keep_records = false;  // keep every tick's telemetry (for CSV and plots)
   bool log_events = false;    // print mission/failsafe events to stderr live
+  // The simulated operator asks to end the charge (VehicleLoop::request_undock()) once the
+  // mission has been in CHARGING this long (physics time); < 0: never.
+  double undock_request_after_charging_s = -1.0;
 };
 
 // One sample per tick of the recharging side, for the plots (kept with keep_records).
@@ -51,6 +54,7 @@ struct RechargeResult {
   double soc_start = 0.0;
   double soc_end = 0.0;
   double undock_clearance_m = -1.0;    // probe tip back from the socket mouth on DEPARTED
+  double end_clearance_m = 0.0;        // and at the end of the trial, whatever the state
   bool undock_marker_in_view = false;  // the marker recognised in the tick DEPARTED began
   std::vector<ChargeSample> samples;
 };
