@@ -63,6 +63,9 @@ void describe(hal::ParamVisitor& v, FailsafeParams& p) {
           {"s", 0.0, 86400.0, "mission time after which the vehicle is made safe (0 = none)"});
   v.param("action", p.action, "safe state: disarm the bus, or stay armed at neutral thrust",
           {"disarm", "neutral"});
+  v.param(
+      "backout_s", p.backout_s,
+      {"s", 0.0, 60.0, "a trip in the socket: back out along the docking axis this long first"});
 }
 
 void describe(hal::ParamVisitor& v, AttitudeParams& p) {
@@ -116,6 +119,10 @@ void describe(hal::ParamVisitor& v, RechargeParams& p) {
           {"N", 1.0, 1000.0, "horizontal hold force beyond which the current is too strong"});
   v.param("overload_s", p.overload_s,
           {"s", 0.0, 600.0, "how long the hold may exceed overload_force_n before UNDOCK"});
+  v.param("overload_yaw_rad", p.overload_yaw_rad,
+          {"rad", 0.0, 1.0, "seated yaw error beyond which the current turns the vehicle off"});
+  v.param("overload_yaw_s", p.overload_yaw_s,
+          {"s", 0.0, 600.0, "how long the yaw error may exceed overload_yaw_rad before UNDOCK"});
   v.param("undock_speed_mps", p.undock_speed_mps,
           {"m/s", 0.005, 1.0, "UNDOCK: speed of the set-point backing out along the axis"});
   v.param("undock_push_n", p.undock_push_n,

@@ -75,6 +75,11 @@ struct FailsafeParams {
   double max_mission_time_s = 0.0;
   // "disarm": disarm the bus (ESCs neutral, vehicle floats up); "neutral": armed, zero thrust.
   std::string action = "disarm";
+  // A trip with the probe in the socket (charging, re-seating, undocking) whose thrusters still
+  // obey backs out along the docking axis this long first (mission.recharge.undock_push_n, open
+  // loop): a disarmed vehicle would hang on its probe in the current, pivot about it and grind the
+  // socket. At the push's ~0.2 m/s, 4 s clears the 0.5 m stand-off. 0: go safe at once.
+  double backout_s = 4.0;
 };
 
 void describe(hal::ParamVisitor& v, FailsafeParams& p);
@@ -127,6 +132,13 @@ struct RechargeParams {
   // beyond what the hold resists -> UNDOCK before being dragged off.
   double overload_force_n = 30.0;
   double overload_s = 2.0;
+  // Or the vehicle turning about its pinned probe: the yaw error beyond overload_yaw_rad for
+  // overload_yaw_s. The socket holds the probe tip, so a cross-current turns the vehicle about it
+  // until the servo's force at that error balances it; the seat is lost at its 10 deg tolerance,
+  // at about 16 N of hold force (a 0.5 m/s cross-current in the sim), long before overload_force_n.
+  // 0.09 rad is half that tolerance and twice the swing of the worst gust in the recharge trials.
+  double overload_yaw_rad = 0.09;
+  double overload_yaw_s = 0.5;
   // UNDOCK: the set-point backs out along the docking axis at undock_speed_mps to the stand-off
   // (standoff_m); blind, push back with undock_push_n. Done when the marker is seen there.
   double undock_speed_mps = 0.08;

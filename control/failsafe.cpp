@@ -34,6 +34,8 @@ const char* to_string(SafeAction a) {
       return "neutral";
     case SafeAction::disarm:
       return "disarm";
+    case SafeAction::back_out:
+      return "back out";
   }
   return "?";
 }
@@ -68,6 +70,25 @@ FailsafeCause Failsafe::check(const FailsafeInput& in) {
   return FailsafeCause::none;
 }
 
+namespace {
+
+// Causes that leave the thrusters obeying a command the loop can still form without the failed
+// input: the back-out is a constant wrench, so a lost camera or estimate does not matter. A bus
+// that does not deliver, or a wrench already not finite, cannot back anything out.
+bool thrusters_usable(FailsafeCause c) {
+  return c == FailsafeCause::camera_lost || c == FailsafeCause::estimate_not_finite ||
+         c == FailsafeCause::mission_time;
+}
+
+}  // namespace
+
+void Failsafe::push_event(const FailsafeEvent& e) {
+  if (event_count_ < kEventCapacity) {
+    events_[(event_head_ + event_count_) % kEventCapacity] = e;
+    ++event_count_;
+  }
+}
+
 SafeAction Failsafe::update(const FailsafeInput& in) {
   if (!started_) {
     started_ = true;
@@ -76,9 +97,18 @@ SafeAction Failsafe::update(const FailsafeInput& in) {
   const FailsafeCause c = check(in);
   if (!tripped() && c != FailsafeCause::none) {
     cause_ = c;
-    if (event_count_ < kEventCapacity) {
-      events_[(event_head_ + event_count_) % kEventCapacity] = {in.now, c, action_};
-      ++event_count_;
+    backing_out_ = in.at_station && p_.backout_s > 0.0 && thrusters_usable(c);
+    back_out_since_ = in.now;
+    push_event({in.now, c, action()});
+  } else if (backing_out_) {
+    // Backed out, or the bus stopped delivering (or the back-out wrench is not finite): now the
+    // safe state proper.
+    const bool backed_out =
+        std::chrono::duration<double>(in.now - back_out_since_).count() >= p_.backout_s;
+    const bool cannot_push = in.bus == hal::BusStatus::fault || !in.wrench_body.allFinite();
+    if (backed_out || cannot_push) {
+      backing_out_ = false;
+      push_event({in.now, cause_, action_});
     }
   }
   return action();
@@ -86,6 +116,7 @@ SafeAction Failsafe::update(const FailsafeInput& in) {
 
 void Failsafe::reset(std::chrono::nanoseconds now) {
   cause_ = FailsafeCause::none;
+  backing_out_ = false;
   camera_timeouts_ = 0;
   bus_degraded_ = 0;
   started_ = true;

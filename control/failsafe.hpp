@@ -1,6 +1,9 @@
 // Run-time failsafes: a lost camera, a faulted thruster bus, NaN in the estimate or the wrench,
 // or the mission's limits put the vehicle in the safe state (neutral or disarmed). Latching: only
 // reset() (a new mission, an operator) clears it. Trips are queued as events; no allocation.
+// Seated in the station (charging, re-seating, undocking) a dead stop would leave the vehicle
+// hanging on its probe in the current; where the thrusters still obey (not a bus fault, not a
+// NaN wrench) it first backs out of the socket open loop for backout_s, then goes safe.
 #pragma once
 
 #include <Eigen/Geometry>
@@ -27,7 +30,9 @@ enum class FailsafeCause {
 };
 const char* to_string(FailsafeCause c);
 
-enum class SafeAction { none, neutral, disarm };
+// back_out: push out of the socket along the docking axis, open loop (the failing input is not
+// trusted), for FailsafeParams::backout_s; then the configured neutral or disarm.
+enum class SafeAction { none, neutral, disarm, back_out };
 const char* to_string(SafeAction a);
 
 struct FailsafeInput {
@@ -38,6 +43,7 @@ struct FailsafeInput {
   double fitness = 0.0;
   Wrench wrench_body = Wrench::Zero();  // this tick's commanded wrench
   MissionState mission = MissionState::search;
+  bool at_station = false;  // the probe in or at the socket (Mission::at_station())
 };
 
 struct FailsafeEvent {
@@ -58,7 +64,10 @@ class Failsafe {
 
   bool tripped() const { return cause_ != FailsafeCause::none; }
   FailsafeCause cause() const { return cause_; }
-  SafeAction action() const { return tripped() ? action_ : SafeAction::none; }
+  SafeAction action() const {
+    return !tripped() ? SafeAction::none : backing_out_ ? SafeAction::back_out : action_;
+  }
+  bool backing_out() const { return tripped() && backing_out_; }
   // Clears the latch and the counters; the mission clock restarts at `now`.
   void reset(std::chrono::nanoseconds now);
 
@@ -66,12 +75,15 @@ class Failsafe {
 
  private:
   FailsafeCause check(const FailsafeInput& in);
+  void push_event(const FailsafeEvent& e);
 
   FailsafeParams p_;
   SafeAction action_;
   FailsafeCause cause_ = FailsafeCause::none;
   bool started_ = false;
   std::chrono::nanoseconds start_{0};
+  bool backing_out_ = false;
+  std::chrono::nanoseconds back_out_since_{0};
   int camera_timeouts_ = 0;
   int bus_degraded_ = 0;
   std::array<FailsafeEvent, kEventCapacity> events_{};

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 #include "control/pd_visual_servo.hpp"
 
@@ -121,6 +122,9 @@ bool Mission::finished() const {
 
 void Mission::enter(MissionState to, std::chrono::nanoseconds now, const char* reason) {
   if (to == MissionState::abort && !final_abort_) ++aborts_;
+  if (to == MissionState::dock && state_ == MissionState::align) keep_axial_trim_ = true;
+  // A re-seat keeps what its DOCK learnt: the stand-off's trim has just proven too weak.
+  if (to == MissionState::charging && !charging_started_) restore_axial_trim_ = true;
   push_event({now, state_, to, reason, aborts_});
   state_ = to;
   entered_ = now;
@@ -130,7 +134,8 @@ void Mission::enter(MissionState to, std::chrono::nanoseconds now, const char* r
   blind_since_ = std::chrono::nanoseconds{-1};
   dock_pushed_ = std::chrono::nanoseconds{0};
   partial_since_ = std::chrono::nanoseconds{-1};
-  unseated_since_ = no_current_since_ = overload_since_ = std::chrono::nanoseconds{-1};
+  unseated_since_ = no_current_since_ = overload_since_ = swing_since_ =
+      std::chrono::nanoseconds{-1};
   backed_off_ = false;
   if (to == MissionState::search) seen_frames_ = 0;
   if (to == MissionState::charging && !charging_started_) {
@@ -150,6 +155,7 @@ void Mission::restart(std::chrono::nanoseconds now) {
   servo_was_active_ = false;
   have_last_ = false;
   charging_started_ = charge_complete_ = abort_after_undock_ = final_abort_ = false;
+  keep_axial_trim_ = restore_axial_trim_ = false;
   reseats_ = 0;
   dock_start_back_m_ = p_.standoff_m;
 }
@@ -301,6 +307,9 @@ MissionOutput Mission::update(const MissionInput& in) {
 
   // Outputs of the state we are in after this tick's transition.
   out.state = state_;
+  out.keep_axial_trim = std::exchange(keep_axial_trim_, false);
+  out.restore_axial_trim = std::exchange(restore_axial_trim_, false);
+  out.hold_axial_trim = state_ == MissionState::charging;
   switch (state_) {
     case MissionState::search:
       out.use_override = true;
@@ -392,8 +401,11 @@ void Mission::charging(const MissionInput& in, bool seen_dock, const Errors& err
   const bool no_current = held_for(in.charger_valid && !past_taper && !contact_lost &&
                                        !vision_out && in.charge_current_a < r.no_current_a,
                                    in.now, no_current_since_, r.no_current_s);
-  const bool overload =
+  const bool pushed =
       held_for(in.hold_force_n > r.overload_force_n, in.now, overload_since_, r.overload_s);
+  const bool swung = held_for(seen_dock && std::abs(err.yaw_rad) > r.overload_yaw_rad, in.now,
+                              swing_since_, r.overload_yaw_s);
+  const bool overload = pushed || swung;
   if (in.undock_requested) {
     start_undock(in.now, "operator command");
   } else if (overload) {
@@ -415,6 +427,22 @@ void Mission::charging(const MissionInput& in, bool seen_dock, const Errors& err
   } else if (seconds(in.now - charging_since_) > r.charge_timeout_s) {
     start_undock(in.now, "charge time limit");
   }
+}
+
+bool Mission::at_station() const {
+  return state_ == MissionState::charging || state_ == MissionState::undock ||
+         (state_ == MissionState::dock && charging_started_);
+}
+
+void Mission::failsafe_undock(std::chrono::nanoseconds now, const char* reason) {
+  if (!at_station() || state_ == MissionState::undock) return;
+  start_undock(now, reason);
+}
+
+Wrench Mission::back_out_wrench_body() const {
+  Wrench w = Wrench::Zero();
+  w.head<3>() = -docked_axis_body_ * p_.recharge.undock_push_n;
+  return w;
 }
 
 void Mission::start_undock(std::chrono::nanoseconds now, const char* reason) {

@@ -66,6 +66,17 @@ struct MissionOutput {
   // Added to the wrench whenever the thrusters are enabled (the seated hold's push).
   Wrench push_body = Wrench::Zero();
   bool thrusters_enabled = true;
+  // The servo's integral along body x, the docking axis once aligned: the axial trim against the
+  // current. keep_axial_trim: remember it now (ALIGN -> DOCK: it has just held the vehicle still
+  // at the stand-off, so it is the current's drag along the axis). restore_axial_trim: set it
+  // back to what was kept (the first CHARGING tick: DOCK winds it up while its set-point runs past
+  // the socket bottom the probe cannot pass, and the hold would press that into the station for
+  // the whole charge: in the 0.14 m/s head-on trial 7 N of trim against 4 N of drag).
+  // hold_axial_trim: do not integrate it (CHARGING: the set-point follows the probe, so the axial
+  // error left is the estimate's bias, not a disturbance; the push is the hold's margin).
+  bool keep_axial_trim = false;
+  bool restore_axial_trim = false;
+  bool hold_axial_trim = false;
   // The control point's error against the docking axis, when the marker is seen this tick:
   // lateral = off the axis, axial = along it (negative: short of the docked position), yaw of
   // the docking axis in body x-y.
@@ -103,6 +114,15 @@ class Mission {
 
   // Back to SEARCH with no aborts counted (a new mission); logged.
   void restart(std::chrono::nanoseconds now);
+
+  // The probe is in or at the socket: CHARGING, a re-seat's DOCK, UNDOCK.
+  bool at_station() const;
+  // A failsafe tripped at the station and the vehicle backs out (Failsafe, SafeAction::back_out):
+  // UNDOCK with `reason` (a static string) logged, unless already undocking. No allocation.
+  void failsafe_undock(std::chrono::nanoseconds now, const char* reason);
+  // The failsafe's back-out: open-loop push out of the socket along the docking axis as it lay
+  // when docked (mission.recharge.undock_push_n).
+  Wrench back_out_wrench_body() const;
 
   MissionState state() const { return state_; }
   // Nothing more will happen: DOCKED (docking mission), DEPARTED, FAILED, or the final ABORT of
@@ -164,6 +184,8 @@ class Mission {
   bool final_abort_ = false;
   bool backed_off_ = false;  // ABORT's back-off time is over
   bool departed_hold_ = false;
+  bool keep_axial_trim_ = false;     // the next output asks to keep the axial trim
+  bool restore_axial_trim_ = false;  // ... to restore it
   int reseats_ = 0;
   double dock_start_back_m_ = 0.0;    // DOCK's set-point starts this far back (re-seat: from here)
   double undock_start_back_m_ = 0.0;  // UNDOCK's set-point starts here
@@ -171,6 +193,7 @@ class Mission {
   std::chrono::nanoseconds unseated_since_{-1};
   std::chrono::nanoseconds no_current_since_{-1};
   std::chrono::nanoseconds overload_since_{-1};
+  std::chrono::nanoseconds swing_since_{-1};
 
   std::array<MissionEvent, kEventCapacity> events_{};
   std::size_t event_head_ = 0;

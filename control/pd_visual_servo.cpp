@@ -77,6 +77,13 @@ void PdVisualServo::reset() {
   integral_.setZero();
   error_.setZero();
   saturated_ = false;
+  held_.setConstant(false);
+}
+
+void PdVisualServo::set_integral_term(int axis, double value) {
+  if (ki_[axis] <= 0.0) return;
+  const double bound = integral_limit_[axis] / ki_[axis];
+  integral_[axis] = std::clamp(value / ki_[axis], -bound, bound);
 }
 
 Wrench PdVisualServo::update(const Eigen::Isometry3d& T_cl_marker_measured,
@@ -103,6 +110,7 @@ Wrench PdVisualServo::update(const Eigen::Isometry3d& T_cl_marker_measured,
         integral_[i] = 0.0;
         continue;
       }
+      if (held_[i]) continue;
       const double next = integral_[i] + e_clipped[i] * dt_s;
       // Conditional integration while the thrusters saturate, then a hard clamp.
       if (saturated_ && std::abs(next) > std::abs(integral_[i])) continue;

@@ -41,6 +41,11 @@ class PdVisualServo {
   // Clears the integral and the derivative; call when the servo (re)starts.
   void reset();
 
+  // One axis of the integral term (0-5: x, y, z, roll, pitch, yaw; N or N m): set it (clamped to
+  // its limit), or hold it where it is (not integrated) until released. reset() releases.
+  void set_integral_term(int axis, double value);
+  void hold_integral(int axis, bool hold) { held_[axis] = hold; }
+
   // Constant feed-forward (net buoyancy), included in update()'s wrench.
   Wrench feedforward_body() const { return feedforward_; }
   // What holds the vehicle's trim while the servo cannot see: the feed-forward plus the
@@ -61,6 +66,7 @@ class PdVisualServo {
   PoseError integral_ = PoseError::Zero();  // of the clipped error, m s and rad s
   PoseError error_ = PoseError::Zero();
   bool saturated_ = false;
+  Eigen::Matrix<bool, 6, 1> held_ = Eigen::Matrix<bool, 6, 1>::Constant(false);
 };
 
 }  // namespace rovctl::control

@@ -14,6 +14,7 @@
 #include "app/runtime/app_config.hpp"
 #include "app/runtime/errors.hpp"
 #include "app/runtime/vehicle_backends.hpp"
+#include "app/tools/charge_fault.hpp"
 #include "app/tools/docking_trial.hpp"
 #include "app/tools/output_folder.hpp"
 #include "app/tools/sim_report.hpp"
@@ -31,11 +32,14 @@ int command_sim(const Words& words) {
   const CliArgs args =
       CliArgs::parse("sim", words,
                      {"--config", "--trials", "--seed", "--out", "--jobs", "--max-time", "--plots",
-                      "--scenario", "--mission", "--serve", "--token", "--serve-linger"},
+                      "--scenario", "--mission", "--serve", "--token", "--serve-linger",
+                      "--charge-fault", "--first-trial"},
                      {"--realtime", "--json", "--verbose", "--hold"});
   const std::string config_file =
       args.has("--config") ? args.get("--config") : default_config_path();
   const int trials = static_cast<int>(args.get_int("--trials", 1, 1, 100000));
+  // Trials are drawn by index: --first-trial I --trials 1 flies trial I of a run again alone.
+  const int first_trial = static_cast<int>(args.get_int("--first-trial", 0, 0, 100000));
   const auto seed = static_cast<std::uint64_t>(args.get_int("--seed", 1, 0, 1L << 40));
   // A live view shows the vehicle at its own pace: served trials run in real time, one by one.
   const bool serve = args.has("--serve");
@@ -71,6 +75,19 @@ int command_sim(const Words& words) {
     // need the time to charge and back out as well as to dock.
     hal::mock::apply_recharge_sea(config.sim);
     if (!args.has("--max-time")) options.max_time_s = kRechargeMaxTimeS;
+  }
+  if (args.has("--charge-fault")) {
+    const std::string name = args.get("--charge-fault");
+    const ChargeFault* fault = find_charge_fault(name);
+    if (fault == nullptr) {
+      throw UsageError("rovctl sim: --charge-fault must be one of " + charge_fault_names_text() +
+                       ", got '" + name + "'");
+    }
+    if (config.mission.kind != "recharge") {
+      throw UsageError(
+          "rovctl sim: --charge-fault needs the recharging mission (--mission recharge)");
+    }
+    apply_charge_fault(*fault, config, options);
   }
   if (args.has("--scenario")) {
     // Overrides sim.scenario, checked here so that a typo is a usage error before any trial.
@@ -122,7 +139,7 @@ int command_sim(const Words& words) {
     for (int i = next++; i < trials; i = next++) {
       try {
         results[static_cast<std::size_t>(i)] =
-            run_docking_trial(config, rig, generator.make(i, seed), options);
+            run_docking_trial(config, rig, generator.make(first_trial + i, seed), options);
       } catch (const std::exception& e) {
         std::lock_guard<std::mutex> lock(report_mutex);
         failure = e.what();
@@ -133,7 +150,7 @@ int command_sim(const Words& words) {
       std::lock_guard<std::mutex> lock(report_mutex);
       const TrialResult& r = results[static_cast<std::size_t>(i)];
       if (tty || !json) {
-        std::cerr << (tty ? "\r" : "") << "trial " << i << ": "
+        std::cerr << (tty ? "\r" : "") << "trial " << first_trial + i << ": "
                   << (r.recharge        ? (trial_recharged(r) ? "docked, charged, departed"
                                                               : "recharge incomplete")
                       : trial_docked(r) ? "docked"

@@ -16,8 +16,11 @@ constexpr const char* kUsage = R"(usage: rovctl <command> [options]
 commands:
   sim        [--config FILE] [--trials N] [--seed S] [--realtime] [--json] [--out DIR]
              [--mission dock|recharge] [--scenario NAME] [--jobs N] [--max-time S]
+             [--first-trial I] [--charge-fault FAULT]
              closed-loop docking (or dock, charge, undock: --mission recharge) on the mock
-             HAL; NAME: clear, turbid, side_light, bubbles, occluders, noisy, exposure
+             HAL; NAME: clear, turbid, side_light, bubbles, occluders, noisy, exposure;
+             FAULT (recharge, injected mid-charge): none, knock, knocks, surge, charger,
+             operator, camera
   sim        --serve HOST:PORT [--token T] [--hold] [--serve-linger S] ...
              the same, in real time, with the live operator view in a browser
   view       --out DIR [--listen HOST:PORT] [--trial N] [--speed X]

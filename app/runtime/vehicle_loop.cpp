@@ -165,9 +165,30 @@ bool VehicleLoop::tick(const TickInfo& info) {
     } else {
       out = mission_.update(in);
     }
-    if (out.thrusters_enabled) {
+    // Roll and pitch from the IMU in every state: the vision servo only damps them, and a
+    // tipped vehicle loses the marker.
+    Eigen::Vector2d level_nm = Eigen::Vector2d::Zero();
+    const bool levelled =
+        !config_.control.servo.six_dof && have_readings && attitude_.update(readings_, level_nm);
+    // A failsafe at the station backs out open loop: the trim that held the vehicle (feed-forward
+    // and the integral against the current) plus the push out; no input it may distrust.
+    auto back_out_wrench = [&]() {
+      control::Wrench w = servo_.hold_wrench_body() + mission_.back_out_wrench_body();
+      if (levelled) {
+        w[3] = level_nm.x();
+        w[4] = level_nm.y();
+      }
+      return w;
+    };
+    const bool backing_out = failsafe_.backing_out();  // tripped on an earlier tick
+    if (backing_out) {
+      wrench = back_out_wrench();
+    } else if (out.thrusters_enabled) {
+      if (out.servo_active && out.servo_restart) servo_.reset();
+      if (out.keep_axial_trim) axial_trim_n_ = servo_.integral_term()[0];
+      if (out.restore_axial_trim) servo_.set_integral_term(0, axial_trim_n_);
+      servo_.hold_integral(0, out.hold_axial_trim);
       if (out.servo_active) {
-        if (out.servo_restart) servo_.reset();
         const std::chrono::nanoseconds dt =
             last_servo_time_.count() < 0 ? info.period : now - last_servo_time_;
         wrench = servo_.update(estimate_.T_cl_marker, out.T_cl_marker_desired, dt);
@@ -179,11 +200,7 @@ bool VehicleLoop::tick(const TickInfo& info) {
         last_servo_time_ = std::chrono::nanoseconds{-1};
       }
       wrench += out.push_body;
-      // Roll and pitch from the IMU in every state: the vision servo only damps them, and a
-      // tipped vehicle loses the marker.
-      Eigen::Vector2d level_nm;
-      if (!config_.control.servo.six_dof && have_readings &&
-          attitude_.update(readings_, level_nm)) {
+      if (levelled) {
         wrench[3] = level_nm.x();
         wrench[4] = level_nm.y();
       }
@@ -198,8 +215,18 @@ bool VehicleLoop::tick(const TickInfo& info) {
     fs.fitness = have_images ? estimate_.fitness : 0.0;
     fs.wrench_body = wrench;
     fs.mission = out.state;
+    fs.at_station = mission_.at_station();
     action = failsafe_.update(fs);
-    if (action != control::SafeAction::none || !out.thrusters_enabled) {
+    if (action == control::SafeAction::back_out && !backing_out) {
+      // Tripped this tick: the mission backs out too (logged), from this tick's command on.
+      mission_.failsafe_undock(now, "failsafe: backing out of the socket");
+      out.state = mission_.state();
+      wrench = back_out_wrench();
+    }
+    const bool thrust = action == control::SafeAction::none
+                            ? out.thrusters_enabled
+                            : action == control::SafeAction::back_out;
+    if (!thrust) {
       command_ = neutral_;
     } else {
       servo_.set_allocation_fraction(allocator_.allocate(wrench, command_));
@@ -278,8 +305,10 @@ bool VehicleLoop::tick(const TickInfo& info) {
     }
   }
 
-  // An operator hold waits for START (or the operator's stop), even after the mission ended.
-  const bool ended = failsafe_.tripped() || (mission_.finished() && !operator_hold_);
+  // An operator hold waits for START (or the operator's stop), even after the mission ended; a
+  // failsafe ends the run once the vehicle is safe, not while it backs out of the socket.
+  const bool ended = (failsafe_.tripped() && !failsafe_.backing_out()) ||
+                     (mission_.finished() && !operator_hold_);
   if (!ended) {
     ended_at_ = std::chrono::nanoseconds{-1};
     return true;

@@ -107,6 +107,7 @@ class VehicleLoop {
   bool disarmed_by_failsafe_ = false;
   bool operator_hold_ = false;
   std::chrono::nanoseconds last_servo_time_{-1};
+  double axial_trim_n_ = 0.0;       // the servo's x integral kept at ALIGN -> DOCK (MissionOutput)
   double last_hold_force_n_ = 0.0;  // horizontal force commanded last tick (the hold's effort)
   std::atomic<bool> undock_requested_{false};
   std::chrono::nanoseconds ended_at_{-1};

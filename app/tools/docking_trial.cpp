@@ -88,6 +88,7 @@ TrialResult run_docking_trial(const AppConfig& config, const hal::StereoRig& rig
   double thruster_wh_last = world.charge().thruster_wh;
   bool charge_phase_over = false;
   double unseated_run_s = 0.0;
+  bool undock_requested = false;
 
   // Logging, truth and bookkeeping after each tick: the simulation's non-real-time side. The
   // ring is drained every tick, so a record is this tick's and the world's truth is its truth.
@@ -121,6 +122,11 @@ TrialResult run_docking_trial(const AppConfig& config, const hal::StereoRig& rig
       thruster_wh_last = c.thruster_wh;
       if (st == MissionState::charging) {
         charge.charging_physics_s += tick_s;
+        if (options.undock_request_after_charging_s >= 0.0 && !undock_requested &&
+            charge.charging_physics_s >= options.undock_request_after_charging_s) {
+          undock_requested = true;
+          loop.request_undock();
+        }
         if (d.seated) {
           charge.seated_physics_s += tick_s;
           charge.seated_s += tick_s * config.sim.recharge.seated_time_scale;
@@ -177,6 +183,7 @@ TrialResult run_docking_trial(const AppConfig& config, const hal::StereoRig& rig
     charge.contact_fraction =
         charge.charging_physics_s > 0.0 ? charge.seated_physics_s / charge.charging_physics_s : 0.0;
     charge.soc_end = world.charge().soc_fraction;
+    charge.end_clearance_m = world.docking().axial_distance_m;
   }
   result.success = trial_docked(result);
   result.sim_time_s = std::chrono::duration<double>(world.time()).count();

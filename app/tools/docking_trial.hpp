@@ -23,6 +23,9 @@ struct TrialOptions {
   bool log_events = false;                // print mission/failsafe events to stderr live
   OperatorLink* operator_link = nullptr;  // a live operator view (rovctl sim --serve), or none
   bool operator_hold_at_start = false;    // begin held: the operator's START begins the mission
+  // The simulated operator asks to end the charge (VehicleLoop::request_undock()) once the
+  // mission has been in CHARGING this long (physics time); < 0: never.
+  double undock_request_after_charging_s = -1.0;
 };
 
 // One sample per tick of the recharging side, for the plots (kept with keep_records).
@@ -54,6 +57,7 @@ struct RechargeResult {
   double soc_start = 0.0;
   double soc_end = 0.0;
   double undock_clearance_m = -1.0;    // probe tip back from the socket mouth on DEPARTED
+  double end_clearance_m = 0.0;        // and at the end of the trial, whatever the state
   bool undock_marker_in_view = false;  // the marker recognised in the tick DEPARTED began
   std::vector<ChargeSample> samples;
 };

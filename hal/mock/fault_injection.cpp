@@ -19,6 +19,20 @@ void describe(ParamVisitor& v, FaultInjection& f) {
   v.param(
       "charger_fails_at_s", f.charger_fails_at_s,
       {"s", -1.0, 1e6, "the station's charger delivers no current from this sim time (-1: never)"});
+  v.param("knock_after_seated_s", f.knock_after_seated_s,
+          {"s", -1.0, 1e6, "a knock out of the socket once seated this long (-1: never)"});
+  v.param("knock_force_n", f.knock_force_n,
+          {"N", 0.0, 1000.0, "the knock's force along the docking axis, outwards"});
+  v.param("knock_duration_s", f.knock_duration_s, {"s", 0.0, 60.0, "how long the knock pushes"});
+  v.param("knock_count", f.knock_count,
+          {"-", 0, 100, "knocks, each once the probe has (re-)seated knock_after_seated_s"});
+  v.param("surge_after_seated_s", f.surge_after_seated_s,
+          {"s", -1.0, 1e6, "a cross-current rises once seated this long (-1: never)"});
+  v.param("surge_mps", f.surge_mps,
+          {"m/s", 0.0, 2.0, "the cross-current's speed (across the docking axis, to station +x)"});
+  v.param("surge_ramp_s", f.surge_ramp_s, {"s", 0.0, 600.0, "the cross-current's rise time"});
+  v.param("camera_lost_after_seated_s", f.camera_lost_after_seated_s,
+          {"s", -1.0, 1e6, "the stereo camera disappears once seated this long (-1: never)"});
 }
 
 }  // namespace rovctl::hal::mock

@@ -17,6 +17,25 @@ struct FaultInjection {
   double sensor_lost_at_s = -1.0;    // Sensors::read() returns false from then on
   double charger_fails_at_s = -1.0;  // the station's charger delivers no current from then on
 
+  // The recharging mission's faults, timed by the seat rather than the clock (a trial docks after
+  // 15-40 s): each comes once the probe has been seated that long (< 0: never).
+  // A knock out of the socket (a diver's fin, a snagged line): knock_force_n along the docking
+  // axis, outwards, for knock_duration_s; again each time the probe has re-seated that long, up to
+  // knock_count knocks.
+  double knock_after_seated_s = -1.0;
+  double knock_force_n = 40.0;
+  double knock_duration_s = 0.5;
+  int knock_count = 1;
+  // A cross-current across the docking axis (towards the station's +x) that rises to surge_mps
+  // over surge_ramp_s and stays: more than the seated hold resists (from about 0.22 m/s it turns
+  // the vehicle about its probe past mission.recharge.overload_yaw_rad, at about 0.28 m/s out of
+  // the seat), less than the vehicle can fight free in the water (about 0.35 m/s).
+  double surge_after_seated_s = -1.0;
+  double surge_mps = 0.26;
+  double surge_ramp_s = 5.0;
+  // The stereo camera is lost (a failsafe while charging).
+  double camera_lost_after_seated_s = -1.0;
+
   // Whether a fault scheduled at `at_s` (negative: never) is active at `now`.
   static bool active(double at_s, std::chrono::nanoseconds now) {
     return at_s >= 0.0 && std::chrono::duration<double>(now).count() >= at_s;

@@ -36,7 +36,8 @@ bool MockStereoCamera::open(std::string& error) {
 
 GrabStatus MockStereoCamera::grab(StereoFrame& frame) {
   const std::chrono::nanoseconds now = world_.time();
-  if (!open_ || FaultInjection::active(faults_.camera_lost_at_s, now)) {
+  if (!open_ || FaultInjection::active(faults_.camera_lost_at_s, now) ||
+      world_.seated_fault_active(faults_.camera_lost_after_seated_s)) {
     return GrabStatus::device_lost;
   }
   if (faults_.camera_timeout_probability > 0.0 &&

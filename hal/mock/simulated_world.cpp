@@ -69,6 +69,9 @@ void SimulatedWorld::reset(const VehicleState& initial,
   charge_.soc_fraction = battery_.soc_fraction();
   charge_.battery_voltage_v = battery_.voltage_v();
   charger_failed_ = false;
+  first_seated_ns_ = seated_since_ns_ = knock_until_ns_ = -1;
+  knocks_ = 0;
+  surge_last_world_mps_.setZero();
   history_count_ = 0;
   history_head_ = 0;
   update_docking();
@@ -131,11 +134,38 @@ Eigen::Vector3d SimulatedWorld::contact_force_world(const VehicleState& s, bool&
   return f - std::max(0.0, push) * axis_world;
 }
 
+double SimulatedWorld::since_first_seated_s() const {
+  return first_seated_ns_ < 0 ? -1.0 : seconds(time_ns_.load() - first_seated_ns_);
+}
+
+Eigen::Vector3d SimulatedWorld::knock_force_world() {
+  const FaultInjection& f = params_.faults;
+  const std::int64_t now = time_ns_.load();
+  if (f.knock_after_seated_s >= 0.0 && knocks_ < f.knock_count && knock_until_ns_ < now &&
+      seated_since_ns_ >= 0 && seconds(now - seated_since_ns_) >= f.knock_after_seated_s) {
+    knock_until_ns_ = now + std::llround(f.knock_duration_s * 1e9);
+    ++knocks_;
+  }
+  if (now >= knock_until_ns_) return Eigen::Vector3d::Zero();
+  return -T_world_marker_.linear().col(2) * f.knock_force_n;  // out of the socket
+}
+
+Eigen::Vector3d SimulatedWorld::surge_world_mps() const {
+  const FaultInjection& f = params_.faults;
+  if (!seated_fault_active(f.surge_after_seated_s)) return Eigen::Vector3d::Zero();
+  const double rise = since_first_seated_s() - f.surge_after_seated_s;
+  const double fraction = f.surge_ramp_s > 0.0 ? std::min(1.0, rise / f.surge_ramp_s) : 1.0;
+  return T_world_marker_.linear().col(0) * f.surge_mps * fraction;  // across the docking axis
+}
+
 void SimulatedWorld::substep(std::int64_t dt_ns) {
   const double dt = seconds(dt_ns);
   const double t_end = seconds(time_ns_.load() + dt_ns);
   thrusters_.step(t_end, dt);
   current_.step(dt);
+  const Eigen::Vector3d surge = surge_world_mps();
+  const Eigen::Vector3d surge_rate = (surge - surge_last_world_mps_) / dt;
+  surge_last_world_mps_ = surge;
   if (docking_.docked && params_.contact.latch_on_dock) {
     state_.nu_body.setZero();  // the latch holds the vehicle
   } else {
@@ -148,7 +178,9 @@ void SimulatedWorld::substep(std::int64_t dt_ns) {
       tau.tail<3>() += vehicle_.probe_tip_body_m.cross(f_body);
       docking_.max_contact_force_n = std::max(docking_.max_contact_force_n, f_world.norm());
     }
-    dynamics_.step(state_, tau, current_.velocity_world_mps(), current_.rate_world_mps2(), dt);
+    tau.head<3>() += state_.q_world_body.conjugate() * knock_force_world();
+    dynamics_.step(state_, tau, current_.velocity_world_mps() + surge,
+                   current_.rate_world_mps2() + surge_rate, dt);
   }
   time_ns_.fetch_add(dt_ns);
   update_docking();
@@ -178,6 +210,12 @@ void SimulatedWorld::update_docking() {
   docking_.seated = docking_.lateral_error_m <= seat_radius_m &&
                     d.z() >= station_.capture_depth_m - params_.recharge.charger.pin_engage_m &&
                     docking_.misalignment_rad <= params_.contact.angle_tolerance_deg * kDegToRad;
+  if (docking_.seated) {
+    if (first_seated_ns_ < 0) first_seated_ns_ = time_ns_.load();
+    if (seated_since_ns_ < 0) seated_since_ns_ = time_ns_.load();
+  } else {
+    seated_since_ns_ = -1;
+  }
   if (!docking_.docked && centred && d.z() >= station_.capture_depth_m &&
       docking_.misalignment_rad <= params_.contact.angle_tolerance_deg * kDegToRad) {
     docking_.docked = true;
@@ -255,7 +293,7 @@ WorldTruth SimulatedWorld::truth() const {
   w.T_world_body = state_.T_world_body();
   w.velocity_body_mps = state_.velocity_body_mps();
   w.omega_body_radps = state_.omega_body_radps();
-  w.current_world_mps = current_.velocity_world_mps();
+  w.current_world_mps = current_.velocity_world_mps() + surge_world_mps();
   w.T_cl_marker = T_cl_marker(w.T_world_body);
   w.thrust_wrench_body = thrusters_.wrench_body();
   w.docking = docking_;

@@ -87,6 +87,14 @@ class SimulatedWorld {
   const ChargeTruth& charge() const { return charge_; }
   // The charger delivers nothing from now on (fault injection).
   void fail_charger() { charger_failed_ = true; }
+  // Time since the probe first seated (physics time); negative before. The seat-timed faults
+  // (FaultInjection::*_after_seated_s) count from there.
+  double since_first_seated_s() const;
+  // Whether a seat-timed fault at `after_s` (negative: never) is active now.
+  bool seated_fault_active(double after_s) const {
+    return after_s >= 0.0 && since_first_seated_s() >= after_s;
+  }
+  int knocks() const { return knocks_; }  // knocks delivered so far
 
   // The body pose at an earlier time, from the history of the last steps (interpolated; clamped
   // to the oldest kept sample), for cameras with capture latency.
@@ -117,6 +125,9 @@ class SimulatedWorld {
   void update_docking();
   void update_charge(double dt_s);
   void record();
+  // The injected knock (world force) and cross-current surge now.
+  Eigen::Vector3d knock_force_world();
+  Eigen::Vector3d surge_world_mps() const;
 
   SimParams params_;
   VehicleGeometry vehicle_;
@@ -135,6 +146,11 @@ class SimulatedWorld {
   Charger charger_;
   ChargeTruth charge_;
   bool charger_failed_ = false;
+  std::int64_t first_seated_ns_ = -1;
+  std::int64_t seated_since_ns_ = -1;  // start of the present seated stretch (-1: not seated)
+  std::int64_t knock_until_ns_ = -1;
+  int knocks_ = 0;
+  Eigen::Vector3d surge_last_world_mps_ = Eigen::Vector3d::Zero();
   std::vector<Sample> history_;   // ring, sized at construction
   std::size_t history_head_ = 0;  // index of the newest sample
   std::size_t history_count_ = 0;

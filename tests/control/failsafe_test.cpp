@@ -131,6 +131,82 @@ TEST(Failsafe, FirstCauseWins) {
   EXPECT_STREQ(to_string(fs.cause()), "thruster bus fault");
 }
 
+TEST(Failsafe, AtTheStationALostCameraBacksOutFirstThenGoesSafe) {
+  FailsafeParams p;
+  p.backout_s = 4.0;
+  Failsafe fs(p);
+  FailsafeInput in = healthy(10s);
+  in.mission = MissionState::charging;
+  in.at_station = true;
+  EXPECT_EQ(fs.update(in), SafeAction::none);
+  in.grab = hal::GrabStatus::device_lost;
+  in.now = 11s;
+  EXPECT_EQ(fs.update(in), SafeAction::back_out);
+  EXPECT_TRUE(fs.backing_out());
+  EXPECT_EQ(fs.cause(), FailsafeCause::camera_lost);
+  in.mission = MissionState::undock;
+  in.now = 14s;
+  EXPECT_EQ(fs.update(in), SafeAction::back_out);
+  in.now = 15s;
+  EXPECT_EQ(fs.update(in), SafeAction::disarm);  // backed out: the safe state proper
+  EXPECT_FALSE(fs.backing_out());
+  EXPECT_EQ(fs.update(in), SafeAction::disarm);
+  FailsafeEvent e;
+  ASSERT_TRUE(fs.pop_event(e));
+  EXPECT_EQ(e.action, SafeAction::back_out);
+  EXPECT_EQ(e.time, 11s);
+  ASSERT_TRUE(fs.pop_event(e));
+  EXPECT_EQ(e.action, SafeAction::disarm);
+  EXPECT_EQ(e.cause, FailsafeCause::camera_lost);
+  EXPECT_EQ(e.time, 15s);
+  EXPECT_FALSE(fs.pop_event(e));
+  EXPECT_STREQ(to_string(SafeAction::back_out), "back out");
+}
+
+TEST(Failsafe, NoBackOutAwayFromTheStationOrWithoutThrusters) {
+  {
+    Failsafe fs(FailsafeParams{});  // free in the water: as before
+    FailsafeInput in = healthy(0s);
+    in.mission = MissionState::approach;
+    in.grab = hal::GrabStatus::device_lost;
+    EXPECT_EQ(fs.update(in), SafeAction::disarm);
+  }
+  {
+    Failsafe fs(FailsafeParams{});  // a bus that does not deliver cannot back anything out
+    FailsafeInput in = healthy(0s);
+    in.mission = MissionState::charging;
+    in.at_station = true;
+    in.bus = hal::BusStatus::fault;
+    EXPECT_EQ(fs.update(in), SafeAction::disarm);
+  }
+  {
+    Failsafe fs(FailsafeParams{});  // nor a wrench that is not finite
+    FailsafeInput in = healthy(0s);
+    in.at_station = true;
+    in.wrench_body[0] = std::numeric_limits<double>::quiet_NaN();
+    EXPECT_EQ(fs.update(in), SafeAction::disarm);
+  }
+  {
+    Failsafe fs(FailsafeParams{});  // the bus fails while backing out: stop at once
+    FailsafeInput in = healthy(0s);
+    in.at_station = true;
+    in.grab = hal::GrabStatus::device_lost;
+    EXPECT_EQ(fs.update(in), SafeAction::back_out);
+    in.now = 1s;
+    in.bus = hal::BusStatus::fault;
+    EXPECT_EQ(fs.update(in), SafeAction::disarm);
+  }
+  {
+    FailsafeParams p;
+    p.backout_s = 0.0;  // configured off
+    Failsafe fs(p);
+    FailsafeInput in = healthy(0s);
+    in.at_station = true;
+    in.grab = hal::GrabStatus::device_lost;
+    EXPECT_EQ(fs.update(in), SafeAction::disarm);
+  }
+}
+
 TEST(Failsafe, RejectsUnknownAction) {
   FailsafeParams p;
   p.action = "explode";

@@ -33,8 +33,9 @@ class RechargeMissionTest : public ::testing::Test {
 
   // The marker as seen with the vehicle `back_m` short of docked along body x (negative: past the
   // socket mouth, into the seat).
-  Eigen::Isometry3d seen_at(double back_m, double lateral_m = 0.0) const {
-    const Eigen::Isometry3d T(Eigen::Translation3d(back_m, lateral_m, 0.0));
+  Eigen::Isometry3d seen_at(double back_m, double lateral_m = 0.0, double yaw_rad = 0.0) const {
+    const Eigen::Isometry3d T = Eigen::Translation3d(back_m, lateral_m, 0.0) *
+                                Eigen::AngleAxisd(yaw_rad, Eigen::Vector3d::UnitZ());
     return T_body_cl.inverse() * T * T_body_cl * docked;
   }
 
@@ -46,6 +47,7 @@ class RechargeMissionTest : public ::testing::Test {
     bool undock = false;
     bool seen = true;
     double back_m = -0.02;  // seated: 2 cm past the socket mouth
+    double yaw_rad = 0.0;   // the vehicle turned about body z
   };
 
   MissionOutput tick(Mission& m, const Charge& c) {
@@ -55,7 +57,7 @@ class RechargeMissionTest : public ::testing::Test {
     in.recognised = c.seen;
     in.full_view = c.seen;
     in.fitness = 0.9;
-    in.T_cl_marker = seen_at(c.back_m);
+    in.T_cl_marker = seen_at(c.back_m, 0.0, c.yaw_rad);
     in.contact = c.contact;
     in.charger_valid = true;
     in.charge_current_a = c.current_a;
@@ -207,6 +209,66 @@ TEST_F(RechargeMissionTest, UnseatedProbeIsReseatedThenUndocksAndAbortsWhenResea
   EXPECT_TRUE(m.finished());
 }
 
+TEST_F(RechargeMissionTest, AxialTrimIsKeptAtTheStandOffRestoredOnceSeatedAndHeldWhileCharging) {
+  Mission m = make();
+  Charge far;
+  far.contact = false;
+  far.back_m = params.standoff_m;
+  int kept = 0;
+  MissionOutput out;
+  for (int k = 0; k < params.acquire_frames + 1 + params.align_hold_frames; ++k) {
+    out = tick(m, far);
+    kept += out.keep_axial_trim ? 1 : 0;
+    EXPECT_FALSE(out.restore_axial_trim);
+    EXPECT_FALSE(out.hold_axial_trim);
+  }
+  ASSERT_EQ(m.state(), MissionState::dock);
+  EXPECT_EQ(kept, 1);  // once, on ALIGN -> DOCK
+  EXPECT_TRUE(out.keep_axial_trim);
+  int restored = 0;
+  for (int k = 0; k < params.contact_frames; ++k) {
+    out = tick(m, Charge{});
+    restored += out.restore_axial_trim ? 1 : 0;
+  }
+  ASSERT_EQ(out.state, MissionState::charging);
+  EXPECT_EQ(restored, 1);  // on the first CHARGING tick
+  EXPECT_TRUE(out.restore_axial_trim);
+  EXPECT_TRUE(out.hold_axial_trim);
+  out = ticks(m, Charge{}, 1s);
+  EXPECT_FALSE(out.restore_axial_trim);
+  EXPECT_TRUE(out.hold_axial_trim);
+  // A re-seat keeps the trim its DOCK learnt: no restore when CHARGING resumes.
+  Charge lost;
+  lost.contact = false;
+  ASSERT_EQ(ticks(m, lost, 400ms).state, MissionState::dock);
+  EXPECT_FALSE(out.keep_axial_trim);
+  restored = 0;
+  for (int k = 0; k < params.contact_frames; ++k) {
+    out = tick(m, Charge{});
+    restored += out.restore_axial_trim ? 1 : 0;
+  }
+  ASSERT_EQ(out.state, MissionState::charging);
+  EXPECT_EQ(restored, 0);
+}
+
+TEST_F(RechargeMissionTest, FailsafeAtTheStationUndocksWithTheReasonLoggedAndBacksOutAlongTheAxis) {
+  Mission m = make();
+  EXPECT_FALSE(m.at_station());
+  m.failsafe_undock(now, "failsafe: backing out of the socket");  // not at the station: nothing
+  EXPECT_EQ(m.state(), MissionState::search);
+  to_charging(m);
+  EXPECT_TRUE(m.at_station());
+  m.failsafe_undock(now, "failsafe: backing out of the socket");
+  EXPECT_EQ(m.state(), MissionState::undock);
+  tick(m, Charge{});
+  EXPECT_TRUE(logged("charging>undock:failsafe: backing out of the socket"));
+  EXPECT_TRUE(m.at_station());
+  // Out of the socket: backwards along the docking axis (body -x when docked).
+  const Wrench w = m.back_out_wrench_body();
+  EXPECT_NEAR(w[0], -params.recharge.undock_push_n, 1e-6);
+  EXPECT_NEAR(w.tail<5>().norm(), 0.0, 1e-6);
+}
+
 TEST_F(RechargeMissionTest, VisionSeeingTheProbeOutOfTheSocketIsAnUnseat) {
   Mission m = make();
   to_charging(m);
@@ -227,6 +289,22 @@ TEST_F(RechargeMissionTest, CurrentBeyondTheHoldUndocksAndDeparts) {
   EXPECT_TRUE(logged("charging>undock:current beyond what the hold resists"));
   EXPECT_EQ(back_out(m).state, MissionState::departed);
   EXPECT_TRUE(m.finished());
+}
+
+TEST_F(RechargeMissionTest, ACrossCurrentTurningTheVehicleAboutItsProbeUndocks) {
+  Mission m = make();
+  to_charging(m);
+  Charge gust;  // a gust turns it half-way, briefly: held
+  gust.yaw_rad = params.recharge.overload_yaw_rad * 0.5;
+  EXPECT_EQ(ticks(m, gust, 3s).state, MissionState::charging);
+  Charge swing;
+  swing.yaw_rad = params.recharge.overload_yaw_rad + 0.02;
+  EXPECT_EQ(ticks(m, swing, 300ms).state, MissionState::charging);
+  EXPECT_EQ(ticks(m, Charge{}, 100ms).state, MissionState::charging);  // back: the timer restarts
+  EXPECT_EQ(ticks(m, swing, 300ms).state, MissionState::charging);
+  EXPECT_EQ(ticks(m, swing, 300ms).state, MissionState::undock);
+  EXPECT_TRUE(logged("charging>undock:current beyond what the hold resists"));
+  EXPECT_EQ(m.reseats(), 0);
 }
 
 TEST_F(RechargeMissionTest, ChargerWithNoCurrentUndocksWithTheCauseLogged) {

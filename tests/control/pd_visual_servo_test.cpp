@@ -184,6 +184,34 @@ TEST_F(PdVisualServoTest, IntegralFreezesWhileSaturated) {
   EXPECT_TRUE(servo.integral_term().isZero());
 }
 
+TEST_F(PdVisualServoTest, OneIntegralAxisCanBeSetAndHeld) {
+  ServoParams p = params();
+  p.kp_linear.setZero();
+  p.kd_linear.setZero();
+  p.ki_linear = {10.0, 10.0, 10.0};
+  p.integral_limit_linear_n = {8.0, 8.0, 8.0};
+  PdVisualServo servo(p, T_body_cl);
+  servo.set_integral_term(0, 3.5);
+  EXPECT_NEAR(servo.integral_term()[0], 3.5, 1e-12);
+  servo.set_integral_term(0, 50.0);  // clamped to the anti-windup limit
+  EXPECT_NEAR(servo.integral_term()[0], 8.0, 1e-12);
+  servo.set_integral_term(0, 2.0);
+  servo.hold_integral(0, true);
+  const Eigen::Isometry3d m = measured(moved({0.1, 0.1, 0.0}));
+  servo.update(m, desired, 33ms);
+  servo.update(m, desired, 100ms);
+  EXPECT_NEAR(servo.integral_term()[0], 2.0, 1e-12);  // held
+  EXPECT_GT(servo.integral_term()[1], 0.0);           // the other axes integrate
+  servo.hold_integral(0, false);
+  servo.update(m, desired, 100ms);
+  EXPECT_GT(servo.integral_term()[0], 2.0);
+  servo.hold_integral(0, true);
+  servo.reset();  // releases the hold
+  servo.update(m, desired, 33ms);
+  servo.update(m, desired, 100ms);
+  EXPECT_GT(servo.integral_term()[0], 0.0);
+}
+
 TEST_F(PdVisualServoTest, LargeErrorsAreClipped) {
   ServoParams p = params();
   PdVisualServo servo(p, T_body_cl);
