@@ -29,12 +29,11 @@ constexpr double kRechargeMaxTimeS = 400.0;
 }  // namespace
 
 int command_sim(const Words& words) {
-  const CliArgs args =
-      CliArgs::parse("sim", words,
-                     {"--config", "--trials", "--seed", "--out", "--jobs", "--max-time", "--plots",
-                      "--scenario", "--mission", "--serve", "--token", "--serve-linger",
-                      "--charge-fault", "--first-trial"},
-                     {"--realtime", "--json", "--verbose", "--hold"});
+  const CliArgs args = CliArgs::parse(
+      "sim", words,
+      {"--config", "--trials", "--seed", "--out", "--jobs", "--max-time", "--plots", "--scenario",
+       "--mission", "--serve", "--token", "--serve-linger", "--charge-fault", "--first-trial"},
+      {"--realtime", "--json", "--verbose", "--hold"});
   const std::string config_file =
       args.has("--config") ? args.get("--config") : default_config_path();
   const int trials = static_cast<int>(args.get_int("--trials", 1, 1, 100000));

@@ -19,7 +19,8 @@ void describe(hal::ParamVisitor& v, OperatorViewParams& p) {
   v.param("jpeg_quality", p.jpeg_quality, {"-", 10, 100, "JPEG quality of the camera stream"});
   v.param("max_clients", p.max_clients,
           {"clients", 1, 256,
-           "HTTP worker threads: connections served at once (each live stream, camera or events, holds one; a browser tab holds two)"});
+           "HTTP worker threads: connections served at once (each live stream, camera or events, "
+           "holds one; a browser tab holds two)"});
 }
 
 bool ListenAddress::loopback() const {

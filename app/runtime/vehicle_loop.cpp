@@ -307,8 +307,8 @@ bool VehicleLoop::tick(const TickInfo& info) {
 
   // An operator hold waits for START (or the operator's stop), even after the mission ended; a
   // failsafe ends the run once the vehicle is safe, not while it backs out of the socket.
-  const bool ended = (failsafe_.tripped() && !failsafe_.backing_out()) ||
-                     (mission_.finished() && !operator_hold_);
+  const bool ended =
+      (failsafe_.tripped() && !failsafe_.backing_out()) || (mission_.finished() && !operator_hold_);
   if (!ended) {
     ended_at_ = std::chrono::nanoseconds{-1};
     return true;
