@@ -56,6 +56,7 @@ def main():
                   lambda m: "calibration: " + os.path.join(conf_dir, m.group(1)), text, flags=re.M)
     text += ("\nscheduler:\n  realtime:\n    sched_fifo: %s\n    priority: 80\n"
              "    mlockall: %s\n" % (("true",) * 2 if a.sched_fifo else ("false",) * 2))
+    os.makedirs(out, exist_ok=True)
     config = os.path.join(out, "sim-load.yaml")
     open(config, "w").write(text)
     total = 2 * a.seconds + 8
