@@ -52,9 +52,8 @@ struct GaReading {
   // six fields; per_field: each field, with that probability, gets one random bit flipped;
   // per_bit: each of the 72 bits flips with that probability.
   std::string mutation = "per_bit";
-  // non_elite: every gene outside the elite, survivors too (mutated in place); children: only
-  // the bred children (the faithful default until the study ranked non_elite first).
-  std::string mutants = "non_elite";
+  std::string mutants = "children";       // children: only the bred children; non_elite: too
+                                          // the survivors outside the elite
   std::string evaluation = "population";  // children: only changed genes; population: every gene
                                           // every generation (Fig. 8's cost ~ population)
   std::string coding = "gray";  // binary: a field is a plain 12-bit number; gray: a Gray code

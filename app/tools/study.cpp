@@ -98,10 +98,9 @@ std::vector<StudyVariant> default_variants() {
   reading("per-field", "the default with per_field mutation: each field mutates with the rate", r,
           true);
   r = GaReading{};
-  r.mutants = "children";
-  reading("children-only",
-          "the default with only the bred children mutated, not the survivors outside the elite", r,
-          true);
+  r.mutants = "non_elite";
+  reading("non-elite", "the default with every gene outside the elite mutated, not only children",
+          r, true);
   r = GaReading{};
   r.coding = "binary";
   reading("binary", "the default with plain binary fields instead of Gray codes", r, true);

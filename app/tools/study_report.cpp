@@ -651,8 +651,7 @@ std::string study_report_markdown(const StudyResult& result, const std::string& 
          << reading_name(result.configured_reading)
          << " (`faithful` and `faithful-paper-pc` run it). Evaluating the whole population "
             "re-scores unchanged genes on the same frame, so at a fixed number of generations it "
-            "changes nothing but the cost (evaluating only the changed genes gives the same runs); "
-            "it is what "
+            "changes nothing but the cost (its rows equal their children-only twins); it is what "
             "makes the evaluations per frame independent of the selection rate, as the paper's "
             "single Fig. 8 curve is.\n";
     }

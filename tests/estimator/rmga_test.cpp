@@ -146,20 +146,5 @@ TEST(Rmga, UnknownReadingIsAnError) {
                std::invalid_argument);
 }
 
-TEST(Rmga, TheFaithfulDefaultMutatesEveryNonEliteAndImprovedKeepsTheFirstReading) {
-  // `rovctl study` ranks non_elite mutants first; the improved mode's reading does not follow.
-  EstimatorParams p;
-  p.mode = "faithful";
-  EXPECT_EQ(p.ga_reading().mutants, "non_elite");
-  EXPECT_EQ(p.ga_reading().mutation, "per_bit");
-  EXPECT_EQ(p.ga_reading().evaluation, "population");
-  EXPECT_EQ(p.ga_reading().coding, "gray");
-  p.mode = "improved";
-  EXPECT_EQ(p.ga_reading().mutants, "children");
-  EXPECT_EQ(p.ga_reading().mutation, "per_child");
-  EXPECT_EQ(p.ga_reading().evaluation, "children");
-  EXPECT_EQ(p.ga_reading().coding, "binary");
-}
-
 }  // namespace
 }  // namespace rovctl::estimator

@@ -129,7 +129,7 @@ TEST(CommandStudy, QuickJsonWritesEverythingSane) {
   }
   // The main three, the readings' ablation and the non-paper far-field variant.
   EXPECT_EQ(variants, (std::set<std::string>{"faithful", "faithful-paper-pc", "improved",
-                                             "per-child", "per-field", "children-only", "binary",
+                                             "per-child", "per-field", "non-elite", "binary",
                                              "rovctl-box", "first-reading", "far-field-paper-pc"}));
   EXPECT_EQ(json["paper"]["table1"].size(), 5u);
 

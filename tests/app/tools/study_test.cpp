@@ -192,7 +192,7 @@ TEST(StudySettings, TheAblationHoldsEveryReadingAndTheNonPaperVariantIsMarked) {
   hal::StereoRig rig;
   const StudySettings full = StudySettings::full(rig);
   int ablation = 0, non_paper = 0;
-  bool per_child = false, per_bit = false, per_field = false, children_only = false, binary = false;
+  bool per_child = false, per_bit = false, per_field = false, non_elite = false, binary = false;
   bool paper_box = false, rovctl_box = false;
   for (const StudyVariant& v : full.variants) {
     if (v.ablation) {
@@ -202,8 +202,7 @@ TEST(StudySettings, TheAblationHoldsEveryReadingAndTheNonPaperVariantIsMarked) {
       per_child |= v.reading->mutation == "per_child";
       per_field |= v.reading->mutation == "per_field";
       per_bit |= v.reading->mutation == "per_bit";
-      // The old faithful default: per-bit mutation of the bred children only.
-      children_only |= v.reading->mutation == "per_bit" && v.reading->mutants == "children";
+      non_elite |= v.reading->mutants == "non_elite";
       binary |= v.reading->coding == "binary";
       (v.search ? paper_box : rovctl_box) = true;
     }
@@ -214,7 +213,7 @@ TEST(StudySettings, TheAblationHoldsEveryReadingAndTheNonPaperVariantIsMarked) {
   }
   EXPECT_GE(ablation, 5);
   EXPECT_EQ(non_paper, 1);
-  EXPECT_TRUE(per_child && per_field && per_bit && children_only && binary);
+  EXPECT_TRUE(per_child && per_field && per_bit && non_elite && binary);
   EXPECT_TRUE(paper_box && rovctl_box);
   EXPECT_NEAR(paper_search_box().z_max_m, 0.815, 1e-12);
 }
