@@ -114,6 +114,20 @@ void describe(hal::ParamVisitor& v, EstimatorParams& p) {
             {"-", 0.1, 1.0, "inner points lie within this fraction of the projected radius"});
     s.param("outer_radius_fraction", p.fitness.outer_radius_fraction,
             {"-", 1.0, 4.0, "radius of the background ring, in projected radii"});
+    s.param("far_field_weight", p.fitness.far_field_weight,
+            {"-", 0.0, 100.0,
+             "not in the paper (far_field_fitness): weight of the mean nearness in the score the "
+             "GA ranks by; weight / reach is the far field's slope, 1 per 50 px like the paper's "
+             "F as it begins to see a sphere; F alone decides among poses whose spheres all lie "
+             "on their colours"});
+    s.param("far_field_reach_px", p.fitness.far_field_reach_px,
+            {"px", 8.0, 10000.0,
+             "not in the paper (far_field_fitness): a projected sphere centre this far from the "
+             "nearest pixels of its colour has nearness 0 (1 on them, linear between)"});
+    s.param("far_field_cell_px", p.fitness.far_field_cell_px,
+            {"px", 1, 64,
+             "not in the paper (far_field_fitness): side of the grid cells on which the far "
+             "field's distances are measured once per frame"});
   });
   v.param("blob_seeding", p.blob_seeding,
           "improved mode: seed genes from colour blobs triangulated in both images");

@@ -33,6 +33,9 @@ MarkerFitness::MarkerFitness(const hal::StereoRig& rig, const hal::MarkerModel& 
     outer_xy_.push_back(static_cast<float>(params.outer_radius_fraction * std::cos(phi)));
     outer_xy_.push_back(static_cast<float>(params.outer_radius_fraction * std::sin(phi)));
   }
+  far_weight_ = params.far_field_weight;
+  far_reach_px_ = params.far_field_reach_px;
+  far_cell_px_ = std::max(1, params.far_field_cell_px);
   inv_inner_ = 1.0f / params.inner_points;
   inv_outer_ = 1.0f / params.outer_points;
 }
@@ -119,8 +122,8 @@ namespace rovctl::estimator {
 void MarkerFitness::enable_far_field() {
   far_field_ = true;
   for (int v = 0; v < 2; ++v) {
-    const int rows = (views_[v].camera.height_px + kFarFieldCellPx - 1) / kFarFieldCellPx;
-    const int cols = (views_[v].camera.width_px + kFarFieldCellPx - 1) / kFarFieldCellPx;
+    const int rows = (views_[v].camera.height_px + far_cell_px_ - 1) / far_cell_px_;
+    const int cols = (views_[v].camera.width_px + far_cell_px_ - 1) / far_cell_px_;
     for (const Sphere& s : spheres_) {
       far_mask_[v][s.colour].create(rows, cols, CV_8UC1);
       far_count_[v][s.colour].create(rows, cols, CV_32SC1);
@@ -133,7 +136,7 @@ void MarkerFitness::enable_far_field() {
 void MarkerFitness::update_far_field() {
   if (!far_field_ || views_[0].labels == nullptr) return;
   // A cell holds a colour when a sixteenth of its pixels carry it: lone noise pixels do not.
-  constexpr int kMinPixels = kFarFieldCellPx * kFarFieldCellPx / 16;
+  const int min_pixels = std::max(1, far_cell_px_ * far_cell_px_ / 16);
   for (int v = 0; v < 2; ++v) {
     const View& view = views_[v];
     for (const Sphere& s : spheres_) far_count_[v][s.colour].setTo(0);
@@ -142,7 +145,7 @@ void MarkerFitness::update_far_field() {
       for (int x = 0; x < view.camera.width_px; ++x) {
         const std::uint8_t c = row[x];
         if (c == 0 || c >= far_count_[v].size() || far_count_[v][c].empty()) continue;
-        ++far_count_[v][c].at<int>(y / kFarFieldCellPx, x / kFarFieldCellPx);
+        ++far_count_[v][c].at<int>(y / far_cell_px_, x / far_cell_px_);
       }
     }
     for (const Sphere& s : spheres_) {
@@ -150,7 +153,7 @@ void MarkerFitness::update_far_field() {
       const cv::Mat& count = far_count_[v][s.colour];
       for (int r = 0; r < mask.rows; ++r) {
         for (int c = 0; c < mask.cols; ++c) {
-          mask.at<std::uint8_t>(r, c) = count.at<int>(r, c) >= kMinPixels ? 0 : 255;
+          mask.at<std::uint8_t>(r, c) = count.at<int>(r, c) >= min_pixels ? 0 : 255;
         }
       }
       // Distance to the nearest zero (colour) cell; with no such cell every entry is large.
@@ -170,11 +173,11 @@ double MarkerFitness::nearness(int v, const Eigen::Vector3d& c, std::uint8_t col
   double u = 0.0, w = 0.0;
   view.camera.distort(x, y, u, w);
   const cv::Mat& dist = far_distance_cells_[v][colour];
-  const double cu = u / kFarFieldCellPx, cw = w / kFarFieldCellPx;
+  const double cu = u / far_cell_px_, cw = w / far_cell_px_;
   const double ku = std::clamp(cu, 0.0, dist.cols - 1.0), kw = std::clamp(cw, 0.0, dist.rows - 1.0);
   const double d_cells =
       dist.at<float>(static_cast<int>(kw), static_cast<int>(ku)) + std::hypot(cu - ku, cw - kw);
-  return std::max(0.0, 1.0 - d_cells * kFarFieldCellPx / kFarFieldReachPx);
+  return std::max(0.0, 1.0 - d_cells * far_cell_px_ / far_reach_px_);
 }
 
 double MarkerFitness::far_field_nearness(const Eigen::Isometry3d& T_cl_marker) const {
@@ -190,7 +193,7 @@ double MarkerFitness::far_field_nearness(const Eigen::Isometry3d& T_cl_marker) c
 
 double MarkerFitness::search_score(const Eigen::Isometry3d& T_cl_marker) const {
   const double f = evaluate(T_cl_marker);
-  return far_field_ ? f + kFarFieldWeight * far_field_nearness(T_cl_marker) : f;
+  return far_field_ ? f + far_weight_ * far_field_nearness(T_cl_marker) : f;
 }
 
 }  // namespace rovctl::estimator

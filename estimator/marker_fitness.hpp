@@ -38,21 +38,19 @@ class MarkerFitness {
   // Not in the paper. The paper's F is 0 on about 90 % of the search volume (no sample point on
   // a sphere's colour), which leaves the GA blind there. The far field orders those poses: per
   // view and sphere, how near the projected centre lies to the nearest pixels of the sphere's
-  // colour, on a coarse grid (kFarFieldCellPx), 1 on them falling linearly to 0 at
-  // kFarFieldReachPx. enable_far_field() allocates; update_far_field() rebuilds the grids from
-  // the current labels (once per frame, after segmenting).
-  static constexpr int kFarFieldCellPx = 8;
-  static constexpr double kFarFieldReachPx = 800.0;
-  // Weight of the far field in search_score: large enough that all spheres near their colours
-  // in both views outrank one sphere half on its colour in one view (the trap the paper's F
-  // sets), small enough that near the truth, where nearness is 1 everywhere, F decides.
-  static constexpr double kFarFieldWeight = 2.0;
+  // colour, on a coarse grid (FitnessParams::far_field_cell_px), 1 on them falling linearly to 0
+  // at far_field_reach_px. Where every centre lies on its colour the far field is 1 and F alone
+  // ranks; its weight (far_field_weight) sets how many pixels of centre distance one unit of F is
+  // worth elsewhere (FitnessParams says why 50).
+  // enable_far_field() allocates; update_far_field() rebuilds the grids from the current labels
+  // (once per frame, after segmenting).
   void enable_far_field();
   void update_far_field();
   bool far_field() const { return far_field_; }
+  double far_field_weight() const { return far_weight_; }
   // The mean nearness in [0, 1] over both views and all spheres (0 without the far field).
   double far_field_nearness(const Eigen::Isometry3d& T_cl_marker) const;
-  // What the GA ranks by: evaluate(), plus kFarFieldWeight * far_field_nearness() when the far
+  // What the GA ranks by: evaluate(), plus far_field_weight * far_field_nearness() when the far
   // field is enabled.
   double search_score(const Eigen::Isometry3d& T_cl_marker) const;
 
@@ -85,6 +83,9 @@ class MarkerFitness {
   // Far field: per view, per colour class, the distance in grid cells from each cell to the
   // nearest cell holding that colour (CV_32F), and the scratch mask it is computed from.
   bool far_field_ = false;
+  double far_weight_ = 16.0;
+  double far_reach_px_ = 800.0;
+  int far_cell_px_ = 8;
   std::array<std::array<cv::Mat, 4>, 2> far_distance_cells_;
   std::array<std::array<cv::Mat, 4>, 2> far_mask_;
   std::array<std::array<cv::Mat, 4>, 2> far_count_;

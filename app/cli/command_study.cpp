@@ -23,7 +23,7 @@ namespace rovctl::app {
 namespace {
 
 constexpr const char* kUsage =
-    "usage: rovctl study [--config FILE] [--quick] [--seeds N] [--out DIR] [--limit-s S] "
+    "usage: rovctl study [--config FILE] [--quick] [--full] [--seeds N] [--out DIR] [--limit-s S] "
     "[--only VARIANT,...] [--setting P/S/M,...] [--json]";
 
 // One updating line on a terminal; elsewhere (a log, CI) a line per phase and every 10 %.
@@ -78,7 +78,7 @@ class ProgressPrinter {
 int run_study_command(const std::vector<std::string>& words, std::ostream& out, std::ostream& err) {
   const CliArgs args = CliArgs::parse(
       "study", words, {"--config", "--seeds", "--out", "--limit-s", "--only", "--setting"},
-      {"--quick", "--json"});
+      {"--quick", "--full", "--json"});
   const bool quick = args.has("--quick");
   const std::string config_path =
       args.has("--config") ? args.get("--config") : default_config_path();
@@ -87,6 +87,8 @@ int run_study_command(const std::vector<std::string>& words, std::ostream& out, 
 
   StudySettings settings = quick ? StudySettings::quick_subset(rig) : StudySettings::full(rig);
   settings.seeds = static_cast<int>(args.get_int("--seeds", settings.seeds, 1, 10000));
+  // --full: the variants at this machine's budget on every seed too (about 17 min CPU more).
+  settings.full_seeds = args.has("--full");
   settings.time_limit_s =
       args.get_double("--limit-s", settings.time_limit_s, settings.frame_period_s, 600.0);
   settings.threads = static_cast<int>(

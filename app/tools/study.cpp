@@ -315,6 +315,11 @@ std::vector<GaCombination> StudySettings::settings_run() const {
   return run;
 }
 
+int StudySettings::seeds_for(const StudyVariant& v) const {
+  if (v.paper_budget || full_seeds) return seeds;
+  return std::min(seeds, machine_budget_seeds);
+}
+
 int StudySettings::time_limit_frames() const {
   return std::max(1, static_cast<int>(std::floor(time_limit_s / frame_period_s + 1e-9)));
 }
@@ -665,6 +670,10 @@ std::vector<FitnessProfile> measure_fitness_profiles(const hal::StereoRig& rig,
     };
     FitnessProfile prof;
     prof.fitness = far ? "far-field" : "paper";
+    if (far) {
+      prof.far_field_weight = p.fitness.far_field_weight;
+      prof.far_field_reach_px = p.fitness.far_field_reach_px;
+    }
     prof.at_truth = score(T_cl_marker);
     prof.offsets_mm = {-20, -10, -5, -2, 2, 5, 10, 20};
     prof.offsets_deg = {-20, -10, -5, -2, 2, 5, 10, 20};
@@ -778,7 +787,7 @@ StudyResult run_study(const hal::StereoRig& rig, const hal::MarkerModel& marker,
       const bool to_limit = k.population == settings.to_limit.population &&
                             k.selection_rate == settings.to_limit.selection_rate &&
                             k.mutation_rate == settings.to_limit.mutation_rate;
-      for (int seed = 0; seed < settings.seeds; ++seed) {
+      for (int seed = 0; seed < settings.seeds_for(variant); ++seed) {
         jobs.push_back({v, c, seed, gens, to_limit});
       }
     }

@@ -124,7 +124,37 @@ TEST(MarkerFitness, FarFieldIsOffUnlessEnabledAndGradedWhereThePapersFitnessIsBl
   EXPECT_GT(f.fitness.search_score(far), 0.0);
   // The graded term is small: it never lifts a pose by more than its weight.
   EXPECT_LE(f.fitness.search_score(truth) - f.fitness.evaluate(truth),
-            MarkerFitness::kFarFieldWeight + 1e-12);
+            f.fitness.far_field_weight() + 1e-12);
+}
+
+TEST(MarkerFitness, FarFieldSlopeIsItsWeightOverItsReach) {
+  // Sideways off the marker, where F is 0: the search score is weight x nearness, and nearness
+  // falls by 1 / reach per pixel, so the score's slope is weight / reach whatever the two are.
+  Fixture f;
+  const Eigen::Isometry3d truth =
+      hal::make_pose({0.03, 0.01, 0.45}, Eigen::Quaterniond::Identity());
+  f.render(truth);
+  Eigen::Isometry3d off = truth;
+  off.translation().x() += 0.15;
+  const auto drop = [&f, &truth, &off](const FitnessParams& p) {
+    MarkerFitness m(f.scene.rig, f.scene.marker, p);
+    m.set_labels(f.l, f.r);
+    m.enable_far_field();
+    m.update_far_field();
+    EXPECT_EQ(m.evaluate(off), 0.0);
+    EXPECT_NEAR(m.search_score(off), p.far_field_weight * m.far_field_nearness(off), 1e-12);
+    return m.search_score(truth) - m.search_score(off);
+  };
+  FitnessParams a;
+  FitnessParams b = a;
+  b.far_field_weight = 2.0 * a.far_field_weight;
+  b.far_field_reach_px = 2.0 * a.far_field_reach_px;  // the same slope
+  FitnessParams c = a;
+  c.far_field_weight = a.far_field_weight / 8.0;  // an eighth of the slope
+  const double da = drop(a), db = drop(b), dc = drop(c);
+  EXPECT_GT(da, 1.0);  // ~180 px off every colour: worth more than all of F at the default
+  EXPECT_NEAR(db, da, 0.05 * da);
+  EXPECT_LT(dc, 0.5 * da);
 }
 
 }  // namespace

@@ -73,6 +73,7 @@ TEST(CommandStudy, QuickJsonWritesEverythingSane) {
   }
   EXPECT_TRUE(json["quick"].as<bool>());
   EXPECT_EQ(json["seeds"].as<int>(), 1);
+  EXPECT_EQ(json["machine_budget_seeds"].as<int>(), 1);  // never more than --seeds
   const double limit_s = json["time_limit_s"].as<double>();
   EXPECT_NEAR(limit_s, 0.2, 1e-9);
 

@@ -218,5 +218,21 @@ TEST(StudySettings, TheAblationHoldsEveryReadingAndTheNonPaperVariantIsMarked) {
   EXPECT_NEAR(paper_search_box().z_max_m, 0.815, 1e-12);
 }
 
+TEST(StudySettings, VariantsAtThisMachinesBudgetRunFewerSeedsUnlessFull) {
+  hal::StereoRig rig;
+  StudySettings s = StudySettings::full(rig);
+  const StudyVariant paper_pc{"p", "", "faithful", true};
+  const StudyVariant machine{"m", "", "faithful", false};
+  s.seeds = 8;
+  s.machine_budget_seeds = 3;
+  EXPECT_EQ(s.seeds_for(paper_pc), 8);
+  EXPECT_EQ(s.seeds_for(machine), 3);
+  s.seeds = 2;  // never more than asked for
+  EXPECT_EQ(s.seeds_for(machine), 2);
+  s.seeds = 8;
+  s.full_seeds = true;
+  EXPECT_EQ(s.seeds_for(machine), 8);
+}
+
 }  // namespace
 }  // namespace rovctl::app
