@@ -82,6 +82,20 @@ class RecordingBus final : public hal::ThrusterBus {
   BusLog& log_;
 };
 
+// Heap allocations made by `ticks` ticks of the vehicle's loop (the tick's own thread only).
+std::uint64_t count_tick_allocations(Vehicle& vehicle, std::uint64_t ticks) {
+  std::uint64_t allocations = 0;
+  vehicle.scheduler().run(
+      [&](const TickInfo& info) {
+        AllocationProbe probe;
+        const bool more = vehicle.loop().tick(info);
+        allocations += probe.allocations();
+        return more;
+      },
+      ticks);
+  return allocations;
+}
+
 bool all_neutral(const hal::ThrusterCommand& c) {
   for (std::size_t i = 0; i < c.count; ++i) {
     if (c.thrust_fraction[i] != 0.0) return false;
@@ -100,15 +114,7 @@ TEST(Vehicle, TickAllocatesNothingAfterStartUp) {
   // Start-up: the first ticks size the images and warm every path.
   vehicle.scheduler().run([&](const TickInfo& info) { return loop.tick(info); }, 30);
   ASSERT_GT(loop.recognised_ticks(), 0u) << "the marker should be seen at the start of trial 0";
-  std::uint64_t allocations = 0;
-  vehicle.scheduler().run(
-      [&](const TickInfo& info) {
-        AllocationProbe probe;
-        const bool more = loop.tick(info);
-        allocations += probe.allocations();
-        return more;
-      },
-      300);
+  const std::uint64_t allocations = count_tick_allocations(vehicle, 300);
   EXPECT_EQ(allocations, 0u) << "allocations in 300 ticks of the application loop";
   TelemetryRing& ring = vehicle.telemetry();
   EXPECT_EQ(ring.size(), std::min<std::size_t>(ring.capacity(), 330));
@@ -127,15 +133,7 @@ TEST(Vehicle, TickWithTheOperatorLinkAllocatesNothing) {
   ASSERT_TRUE(vehicle.arm(error)) << error;
   VehicleLoop& loop = vehicle.loop();
   vehicle.scheduler().run([&](const TickInfo& info) { return loop.tick(info); }, 30);
-  std::uint64_t allocations = 0;
-  vehicle.scheduler().run(
-      [&](const TickInfo& info) {
-        AllocationProbe probe;
-        const bool more = loop.tick(info);
-        allocations += probe.allocations();
-        return more;
-      },
-      300);
+  const std::uint64_t allocations = count_tick_allocations(vehicle, 300);
   EXPECT_EQ(allocations, 0u) << "allocations in 300 ticks with the operator link attached";
   EXPECT_EQ(link.records().published(), 330u);
   // Every third or fourth tick at 33 ms and a 100 ms image period.
