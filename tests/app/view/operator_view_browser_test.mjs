@@ -1,6 +1,6 @@
 // The operator view in a real browser: Debian's chromium, driven by puppeteer-core, against
 // `rovctl sim --serve`. Checks that the page loads, the camera stream updates, the state goes
-// from SEARCH to DOCKED, ABORT without the token is refused (403) and changes nothing, and ABORT
+// from SEARCH (held until START from the page) to DOCKED, ABORT without the token is refused (403) and changes nothing, and ABORT
 // from the page puts the vehicle in neutral within 2 ticks (read back from the run's telemetry).
 // Usage: node operator_view_browser_test.mjs ROVCTL ARTIFACT_DIR   (exit 77: skipped)
 import { spawn } from "node:child_process";
@@ -51,14 +51,20 @@ const browser = await puppeteer.launch({
 });
 try {
   // --- 1. A docking run, watched from SEARCH to DOCKED. ---
-  const run = serve(["--seed", "3", "--serve-linger", "6", "--max-time", "90"]);
+  // --hold: the vehicle waits in SEARCH for START, so the page sees the mission from its start
+  // however slowly the browser comes up (on a loaded CI machine it used to miss SEARCH).
+  const run = serve(["--seed", "3", "--serve-linger", "6", "--max-time", "120", "--hold"]);
   const url = await run.url;
   const page = await browser.newPage();
   await page.setViewport({ width: 1400, height: 820 });
   await page.goto(url + "?token=" + TOKEN, { waitUntil: "domcontentloaded" });
   await waitFor(page, () => window.rovctl && window.rovctl.updates > 0, null, 20000, "first state");
-  const first = await page.evaluate(() => window.rovctl.seenStates[0]);
-  check(first === "SEARCH", `first state shown is SEARCH (got ${first})`);
+  const first = await page.evaluate(() => [window.rovctl.seenStates[0], window.rovctl.last.operator_hold]);
+  check(first[0] === "SEARCH" && first[1], `first state shown is SEARCH, held (got ${first})`);
+  await page.click("#start");
+  await waitFor(page, () => /START: 200/.test(document.getElementById("cmd").textContent), null,
+                5000, "START accepted");
+  await waitFor(page, () => !window.rovctl.last.operator_hold, null, 5000, "the hold released");
   await waitFor(page, () => document.getElementById("cams").naturalWidth > 0, null, 20000,
                 "the first camera picture");
   const cams = await page.$("#cams");
