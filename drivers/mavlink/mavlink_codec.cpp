@@ -174,4 +174,18 @@ bool FrameParser::next(Frame& frame) {
   }
 }
 
+bool FrameParser::finish(Frame& frame) {
+  while (buffered() > 0) {
+    if (next(frame)) {
+      return true;
+    }
+    if (buffered() > 0) {
+      ++counters_.incomplete_frames;
+      drop(1);
+    }
+  }
+  reset();
+  return false;
+}
+
 }  // namespace rovctl::drivers::mavlink

@@ -86,6 +86,7 @@ struct ParserCounters {
   std::uint64_t unknown_ids = 0;         // id outside the table (no CRC_EXTRA to check it)
   std::uint64_t signed_skipped = 0;      // well-formed signed frames, dropped (no signing)
   std::uint64_t bad_incompat_flags = 0;  // incompatibility flags we do not understand
+  std::uint64_t incomplete_frames = 0;   // start bytes whose frame the input ended inside
 };
 
 // Reassembles frames from a byte stream in a fixed window. A start byte whose frame fails its
@@ -99,6 +100,10 @@ class FrameParser {
   std::size_t feed(std::span<const std::uint8_t> bytes);
   // The next complete, checked frame, if any.
   bool next(Frame& frame);
+  // As next() at the end of the input (a datagram's end): a frame still incomplete never will
+  // be, so its start byte is dropped and the search goes on in the bytes after it. Leaves the
+  // window empty when it returns false.
+  bool finish(Frame& frame);
   // Drops what is buffered (e.g. at a datagram boundary, where a frame cannot continue).
   void reset() { begin_ = end_ = 0; }
   std::size_t buffered() const { return end_ - begin_; }

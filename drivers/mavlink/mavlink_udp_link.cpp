@@ -149,6 +149,10 @@ MavlinkUdpLink::Io MavlinkUdpLink::receive(Frame& frame) {
     if (datagram_fed_ < datagram_length_) {
       continue;
     }
+    // A frame never continues into the next datagram.
+    if (parser_.finish(frame)) {
+      return Io::ok;
+    }
     sockaddr_in from{};
     socklen_t from_length = sizeof from;
     const ssize_t n = ::recvfrom(fd_, datagram_.data(), datagram_.size(), MSG_DONTWAIT,

@@ -346,6 +346,24 @@ TEST(MavlinkCodec, ResyncsAfterGarbageAndFalseStartBytes) {
   }
 }
 
+TEST(MavlinkCodec, FinishRescansAnIncompleteFrameAtTheEndOfInput) {
+  // One datagram: a false STX claiming 200 bytes, then a whole frame. At the datagram's end the
+  // false frame can never complete, and the real one behind it comes out.
+  std::vector<std::uint8_t> datagram{0xFD, 0xC8, 0x00, 0x00, 0x00, 0x01, 0x01, 0x00, 0x00, 0x00};
+  const auto hb = from_hex(kNodeHeartbeat);
+  datagram.insert(datagram.end(), hb.begin(), hb.end());
+  datagram.push_back(0xFD);  // and a lone start byte at the very end
+  FrameParser parser;
+  ASSERT_EQ(parser.feed(datagram), datagram.size());
+  Frame f;
+  EXPECT_FALSE(parser.next(f));
+  ASSERT_TRUE(parser.finish(f));
+  EXPECT_EQ(f.header.sequence, 7);
+  EXPECT_FALSE(parser.finish(f));
+  EXPECT_EQ(parser.buffered(), 0U);
+  EXPECT_EQ(parser.counters().incomplete_frames, 2U);
+}
+
 TEST(MavlinkCodec, SignedFramesAreSkippedCleanly) {
   // The heartbeat re-signed: incompat flag 0x01, CRC recomputed, 13 signature bytes appended.
   auto hb = from_hex(kNodeHeartbeat);

@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <chrono>
 #include <thread>
 
@@ -116,7 +117,11 @@ TEST(MavlinkUdpLink, SeveralFramesInOneDatagramAndDamageStaysInItsDatagram) {
   // A datagram cut short after a header claiming 200 bytes: must not eat the next datagram.
   const std::array<std::uint8_t, 12> broken{0xFD, 200, 0, 0, 9, 1, 1, 0, 0, 0, 1, 2};
   ASSERT_EQ(tx.send(broken), MavlinkUdpLink::Io::ok);
-  n = write_message(w, ScaledPressure2{1, 1013.25F, 0, 0, 0}, buf);
+  // A false start byte in front of a frame in the same datagram: the frame still comes out.
+  buf[0] = 0xFD;
+  buf[1] = 100;
+  std::fill(buf.begin() + 2, buf.begin() + 10, std::uint8_t{0});
+  n = 10 + write_message(w, ScaledPressure2{1, 1013.25F, 0, 0, 0}, std::span(buf).subspan(10));
   ASSERT_EQ(tx.send({buf.data(), n}), MavlinkUdpLink::Io::ok);
 
   Frame f;
@@ -129,6 +134,7 @@ TEST(MavlinkUdpLink, SeveralFramesInOneDatagramAndDamageStaysInItsDatagram) {
   EXPECT_EQ(f.header.message_id, ScaledPressure2::kId);
   EXPECT_EQ(f.header.sequence, 2);
   EXPECT_EQ(rx.counters().datagrams_in, 3U);
+  EXPECT_GE(rx.parser_counters().incomplete_frames, 2U);
 }
 
 TEST(MavlinkUdpLink, OpenFailureNamesTheEndpoint) {
