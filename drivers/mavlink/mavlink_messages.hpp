@@ -32,6 +32,8 @@ struct Heartbeat {  // HEARTBEAT (0)
   std::uint8_t base_mode = 0;      // MAV_MODE_FLAG bits
   std::uint8_t system_status = 0;  // MAV_STATE
   std::uint8_t mavlink_version = 3;
+
+  bool operator==(const Heartbeat&) const = default;
 };
 
 struct SysStatus {  // SYS_STATUS (1)
@@ -49,6 +51,8 @@ struct SysStatus {  // SYS_STATUS (1)
   std::uint32_t sensors_present_extended = 0;
   std::uint32_t sensors_enabled_extended = 0;
   std::uint32_t sensors_health_extended = 0;
+
+  bool operator==(const SysStatus&) const = default;
 };
 
 struct ParamRequestRead {  // PARAM_REQUEST_READ (20)
@@ -57,6 +61,8 @@ struct ParamRequestRead {  // PARAM_REQUEST_READ (20)
   std::uint8_t target_system = 0;
   std::uint8_t target_component = 0;
   std::array<char, 16> param_id{};  // NUL-terminated only when shorter than 16
+
+  bool operator==(const ParamRequestRead&) const = default;
 };
 
 struct ParamValue {  // PARAM_VALUE (22)
@@ -66,6 +72,8 @@ struct ParamValue {  // PARAM_VALUE (22)
   std::uint16_t param_index = 0;
   std::array<char, 16> param_id{};
   std::uint8_t param_type = 0;  // MAV_PARAM_TYPE
+
+  bool operator==(const ParamValue&) const = default;
 };
 
 struct AttitudeQuaternion {  // ATTITUDE_QUATERNION (31)
@@ -76,6 +84,8 @@ struct AttitudeQuaternion {  // ATTITUDE_QUATERNION (31)
   float pitchspeed_rad_s = 0.0F;
   float yawspeed_rad_s = 0.0F;
   std::array<float, 4> repr_offset_q{};  // extension
+
+  bool operator==(const AttitudeQuaternion&) const = default;
 };
 
 struct ManualControl {  // MANUAL_CONTROL (69)
@@ -91,6 +101,8 @@ struct ManualControl {  // MANUAL_CONTROL (69)
   std::int16_t s = 0;
   std::int16_t t = 0;
   std::array<std::int16_t, 6> aux{};
+
+  bool operator==(const ManualControl&) const = default;
 };
 
 struct RcChannelsOverride {  // RC_CHANNELS_OVERRIDE (70)
@@ -98,6 +110,8 @@ struct RcChannelsOverride {  // RC_CHANNELS_OVERRIDE (70)
   std::array<std::uint16_t, 18> channels_us{};  // 0 and UINT16_MAX: not driven
   std::uint8_t target_system = 0;
   std::uint8_t target_component = 0;
+
+  bool operator==(const RcChannelsOverride&) const = default;
 };
 
 struct VfrHud {  // VFR_HUD (74)
@@ -108,6 +122,8 @@ struct VfrHud {  // VFR_HUD (74)
   float climb_m_s = 0.0F;
   std::int16_t heading_deg = 0;
   std::uint16_t throttle_pct = 0;
+
+  bool operator==(const VfrHud&) const = default;
 };
 
 struct CommandLong {  // COMMAND_LONG (76)
@@ -117,6 +133,8 @@ struct CommandLong {  // COMMAND_LONG (76)
   std::uint8_t target_system = 0;
   std::uint8_t target_component = 0;
   std::uint8_t confirmation = 0;
+
+  bool operator==(const CommandLong&) const = default;
 };
 
 struct CommandAck {  // COMMAND_ACK (77)
@@ -127,6 +145,8 @@ struct CommandAck {  // COMMAND_ACK (77)
   std::int32_t result_param2 = 0;
   std::uint8_t target_system = 0;
   std::uint8_t target_component = 0;
+
+  bool operator==(const CommandAck&) const = default;
 };
 
 struct ScaledPressure2 {  // SCALED_PRESSURE2 (137)
@@ -136,6 +156,8 @@ struct ScaledPressure2 {  // SCALED_PRESSURE2 (137)
   float press_diff_hpa = 0.0F;
   std::int16_t temperature_cdegc = 0;
   std::int16_t temperature_press_diff_cdegc = 0;
+
+  bool operator==(const ScaledPressure2&) const = default;
 };
 
 struct NamedValueFloat {  // NAMED_VALUE_FLOAT (251)
@@ -143,6 +165,8 @@ struct NamedValueFloat {  // NAMED_VALUE_FLOAT (251)
   std::uint32_t time_boot_ms = 0;
   float value = 0.0F;
   std::array<char, 10> name{};
+
+  bool operator==(const NamedValueFloat&) const = default;
 };
 
 struct StatusText {  // STATUSTEXT (253)
@@ -151,6 +175,8 @@ struct StatusText {  // STATUSTEXT (253)
   std::array<char, 50> text{};
   std::uint16_t id = 0;  // non-zero ties the chunks of a longer text together
   std::uint8_t chunk_seq = 0;
+
+  bool operator==(const StatusText&) const = default;
 };
 
 // Each pack writes the full message (extensions included) and returns its length; the frame
