@@ -8,6 +8,8 @@
 #include <vector>
 
 #include "drivers/mavlink/mavlink_messages.hpp"
+#include "drivers/mavlink/mavlink_udp_link.hpp"
+#include "malloc_counter.hpp"  // the one file of drivers_tests that installs the hooks
 
 namespace rovctl::drivers::mavlink {
 namespace {
@@ -403,6 +405,72 @@ TEST(MavlinkCodec, ParserKeepsUpWithBackToBackFrames) {
   EXPECT_EQ(back.id, 7);
   EXPECT_EQ(back.chunk_seq, 1);
   EXPECT_EQ(text_of(back.text), std::string(50, 'x'));
+}
+
+// The codec will run next to the tick: encoding, parsing and unpacking must not touch the heap.
+TEST(MavlinkCodec, EncodeParseAndUnpackAllocateNothing) {
+  if (!rovctl::testing::malloc_hooks_installed()) {
+    GTEST_SKIP() << "no malloc hooks under AddressSanitizer";
+  }
+  FrameWriter writer(255, 190);
+  FrameParser parser;
+  std::array<std::uint8_t, kMaxFrameBytes> out{};
+  Frame f;
+  StatusText text;
+  ManualControl manual;
+  CommandLong command;
+  const std::array<std::uint8_t, 5> garbage{0xFD, 0x40, 0x00, 0x13, 0x37};
+  const std::uint64_t before = rovctl::testing::t_allocations;
+  std::size_t frames = 0;
+  for (int i = 0; i < 100; ++i) {
+    set_text(text.text, "FAILSAFE camera lost");
+    manual.x = static_cast<std::int16_t>(i);
+    const std::size_t lengths[] = {write_message(writer, manual, out),
+                                   write_message(writer, text, out),
+                                   write_message(writer, arm_disarm(1, 1, true, false), out)};
+    parser.feed(garbage);
+    for (const std::size_t n : lengths) {
+      ASSERT_GT(n, 0U);
+    }
+    const std::size_t n = write_message(writer, manual, out);
+    parser.feed(std::span<const std::uint8_t>(out.data(), n));
+    while (parser.next(f) || parser.finish(f)) {
+      frames += unpack(f, manual) ? 1 : 0;
+      unpack(f, text);
+      unpack(f, command);
+    }
+  }
+  EXPECT_EQ(rovctl::testing::t_allocations - before, 0U);
+  EXPECT_EQ(frames, 100U);  // the allocation count above is of real work
+}
+
+// The link's steady state (send, receive, parse) is as allocation-free as the codec.
+TEST(MavlinkUdpLink, SendAndReceiveAllocateNothing) {
+  if (!rovctl::testing::malloc_hooks_installed()) {
+    GTEST_SKIP() << "no malloc hooks under AddressSanitizer";
+  }
+  std::string error;
+  MavlinkUdpLink rx;
+  ASSERT_TRUE(rx.open(UdpEndpoint{UdpEndpoint::Mode::listen, "127.0.0.1", 0}, error)) << error;
+  MavlinkUdpLink tx;
+  ASSERT_TRUE(
+      tx.open(UdpEndpoint{UdpEndpoint::Mode::send_to, "127.0.0.1", rx.local_port()}, error));
+  FrameWriter writer(255, 190);
+  std::array<std::uint8_t, kMaxFrameBytes> out{};
+  Frame f;
+  Heartbeat hb;
+  std::size_t received = 0;
+  const std::uint64_t before = rovctl::testing::t_allocations;
+  for (int i = 0; i < 50; ++i) {
+    hb.custom_mode = static_cast<std::uint32_t>(i);
+    ASSERT_EQ(tx.send({out.data(), write_message(writer, hb, out)}), MavlinkUdpLink::Io::ok);
+    for (int spin = 0; spin < 100000 && rx.receive(f) != MavlinkUdpLink::Io::ok; ++spin) {
+    }
+    received += unpack(f, hb) && hb.custom_mode == static_cast<std::uint32_t>(i) ? 1 : 0;
+    EXPECT_EQ(rx.receive(f), MavlinkUdpLink::Io::would_block);
+  }
+  EXPECT_EQ(rovctl::testing::t_allocations - before, 0U);
+  EXPECT_EQ(received, 50U);
 }
 
 }  // namespace
