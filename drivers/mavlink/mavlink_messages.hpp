@@ -21,8 +21,6 @@ constexpr std::uint16_t kCmdSetMessageInterval = 511;
 constexpr float kArmDisarmForceMagic = 21196.0F;
 // HEARTBEAT.base_mode bit set while the vehicle is armed (MAV_MODE_FLAG_SAFETY_ARMED).
 constexpr std::uint8_t kModeFlagSafetyArmed = 0x80;
-// MANUAL_CONTROL and RC_CHANNELS_OVERRIDE value meaning "this channel is not driven".
-constexpr std::uint16_t kRcChannelUnused = 0;
 
 struct Heartbeat {  // HEARTBEAT (0)
   static constexpr std::uint32_t kId = 0;
@@ -107,7 +105,9 @@ struct ManualControl {  // MANUAL_CONTROL (69)
 
 struct RcChannelsOverride {  // RC_CHANNELS_OVERRIDE (70)
   static constexpr std::uint32_t kId = 70;
-  std::array<std::uint16_t, 18> channels_us{};  // 0 and UINT16_MAX: not driven
+  // common.xml: on channels 1-8 UINT16_MAX leaves a channel as it is and 0 releases it to
+  // the RC radio; on 9-18 both 0 and UINT16_MAX leave it, UINT16_MAX - 1 releases it.
+  std::array<std::uint16_t, 18> channels_us{};
   std::uint8_t target_system = 0;
   std::uint8_t target_component = 0;
 

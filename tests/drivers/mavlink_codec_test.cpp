@@ -169,8 +169,8 @@ TEST(MavlinkCodec, TableMatchesTheDefinitions) {
   EXPECT_EQ(find_message(2), nullptr);
 }
 
-// Spot values as published (mavlink/c_library_v2 MAVLINK_MESSAGE_CRCS), so a wrong recomputation
-// above cannot agree with a wrong table.
+// Spot values as node-mavlink's generated MAGIC_NUMBERs (mavlink-mappings 1.0.21-20250824-1;
+// the peer test compares all 13), so a wrong recomputation above cannot agree with a wrong table.
 TEST(MavlinkCodec, KnownCrcExtras) {
   EXPECT_EQ(find_message(0)->crc_extra, 50);
   EXPECT_EQ(find_message(69)->crc_extra, 243);
