@@ -25,8 +25,9 @@ if [ ${#missing[@]} -gt 0 ]; then
   DEBIAN_FRONTEND=noninteractive "${sudo_cmd[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}"
 fi
 
-# The npm test peers (puppeteer-core for the browser test), pinned by tests/package-lock.json.
-if [ ! -d tests/node_modules/puppeteer-core ]; then
+# The npm test peers (puppeteer-core for the browser test, node-mavlink for the MAVLink peer),
+# pinned by tests/package-lock.json; a checkout that had only the first gets the second too.
+if [ ! -d tests/node_modules/puppeteer-core ] || [ ! -d tests/node_modules/node-mavlink ]; then
   echo "setup: npm ci in tests/"
   npm ci --prefix tests --no-audit --no-fund --loglevel=error
 fi
