@@ -71,6 +71,7 @@ void BusIoThread::record_ack(std::chrono::nanoseconds now) {
 void BusIoThread::run() {
   make_thread_non_realtime();
   std::uint32_t answered = 0;
+  bool probing = false;  // a command went unanswered: reads only until the peer answers
   while (true) {
     wait_for_work();
     // Arm requests first: a disarm must not wait behind a command, and arming always writes
@@ -92,14 +93,27 @@ void BusIoThread::run() {
         // The tick has moved on (or stopped): late thrust is worse than none, and the
         // controller's watchdog stops the thrusters if nothing fresher comes.
         ++stats_.dropped_stale;
+      } else if (probing) {
+        // A request that went unanswered may still sit in a stalled peer's input (a stream
+        // cannot take it back), to be executed when it resumes: send no more commands into that
+        // queue, only telemetry reads, harmless when replayed, until one is answered.
+        ++stats_.withheld;
+        hal::ThrusterTelemetry& t = telemetry_.back();
+        if (bus_.read(t) != hal::BusStatus::fault && t.valid) {
+          telemetry_.publish();
+          probing = false;
+        }
       } else {
         ++stats_.written;
         const hal::BusStatus s = bus_.write(c->command);
         bus_status_.store(static_cast<int>(s), std::memory_order_release);
-        if (s == hal::BusStatus::ok) record_ack(clock_.now());
-        hal::ThrusterTelemetry& t = telemetry_.back();
-        const hal::BusStatus r = bus_.read(t);
-        if (r != hal::BusStatus::fault) telemetry_.publish();
+        if (s == hal::BusStatus::ok) {
+          record_ack(clock_.now());
+          hal::ThrusterTelemetry& t = telemetry_.back();
+          if (bus_.read(t) != hal::BusStatus::fault) telemetry_.publish();
+        } else {
+          probing = true;
+        }
       }
     }
     // Stop only once nothing is left to answer, so close()'s final disarm is always attempted.
@@ -178,7 +192,8 @@ void BusIoThread::close() {
     // Bounded by the bus's own timeouts: the thread is inside at most one transaction (and the
     // disarm it still owes).
     thread_.join();
-    stats_.superseded = commands_.published() - stats_.written - stats_.dropped_stale;
+    stats_.superseded =
+        commands_.published() - stats_.written - stats_.dropped_stale - stats_.withheld;
   }
   closed_ = true;
   bus_.close();

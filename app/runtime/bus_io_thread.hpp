@@ -24,6 +24,7 @@ struct BusIoStats {
   std::uint64_t acknowledged = 0;   // of those, answered ok
   std::uint64_t dropped_stale = 0;  // older than command_deadline_ms when the bus was free
   std::uint64_t superseded = 0;     // overwritten by a newer command before the bus was free
+  std::uint64_t withheld = 0;       // not sent while an unanswered peer was probed with reads
   std::vector<double> heartbeat_period_ms;  // time between acknowledged writes
 };
 

@@ -7,10 +7,12 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 #include <string>
 #include <thread>
 #include <vector>
@@ -181,6 +183,79 @@ TEST_P(BusIoModbusTest, TheTickNeverWaitsForThePeer) {
 }
 
 INSTANTIATE_TEST_SUITE_P(PeerDelayMs, BusIoModbusTest, ::testing::Values(0, 15, 100));
+
+// The hung peer got 44 queued writes replayed when it resumed, 6 of them stale thrust.
+// Here the peer stalls (SIGSTOP) for 1 s while the tick keeps commanding; the tick codes its send
+// time into each command, so the peer's log says how old each one was when it was executed. A
+// request already sent cannot be taken back from a stream (not even by a reset), so the one in
+// flight when the peer stalled, and its retry, run late; nothing after them may.
+TEST(BusIoModbusHungPeer, AStalledPeerExecutesNoStaleCommandWhenItResumes) {
+  ROVCTL_REQUIRE_TOOL(test::have_pymodbus(), "/usr/bin/python3 has no usable pymodbus");
+  Peer peer;
+  ASSERT_TRUE(start_peer(peer, 0)) << "pymodbus peer did not start";
+  drivers::ModbusParams mp;
+  mp.transport = "tcp";
+  mp.host = "127.0.0.1";
+  mp.port = peer.port;
+  mp.slave_id = 7;
+  mp.response_timeout_ms = 100;
+  drivers::ModbusThrusterBus bus(mp, 8);
+  drivers::MonotonicClock clock;  // CLOCK_MONOTONIC, as the peer's log (time.monotonic)
+  const drivers::BusTimingParams timing;
+  BusIoThread io(bus, clock, timing);
+  std::string error;
+  ASSERT_TRUE(io.open(error)) << error;
+  ASSERT_EQ(io.arm(true), hal::BusStatus::ok);
+  // Command k (permille k + 1, never neutral) is sent at sent_s[k].
+  std::vector<double> sent_s;
+  sent_s.reserve(200);
+  SchedulerParams sp;
+  CyclicScheduler scheduler(clock, sp);
+  hal::ThrusterCommand command;
+  command.count = 8;
+  double resumed_s = 0.0;
+  scheduler.run(
+      [&](const TickInfo& info) {
+        if (info.index == 30) ::kill(peer.pid, SIGSTOP);
+        if (info.index == 60) {
+          ::kill(peer.pid, SIGCONT);
+          resumed_s = std::chrono::duration<double>(clock.now()).count();
+        }
+        command.thrust_fraction.fill(static_cast<double>(info.index + 1) / 1000.0);
+        sent_s.push_back(std::chrono::duration<double>(clock.now()).count());
+        io.write(command);
+        return true;
+      },
+      120);
+  io.close();
+  std::ifstream log(peer.dir + "/log");
+  std::string line;
+  int executed_after_resume = 0;
+  int stale = 0;
+  double oldest_s = 0.0;
+  // What a command may age before it runs: the deadline, then its timeout and retry.
+  const double fresh_ms =
+      timing.command_deadline_ms + (mp.retries + 1) * (mp.response_timeout_ms + 50);
+  while (std::getline(log, line)) {
+    std::istringstream ls(line);
+    double t = 0.0;
+    std::string kind;
+    int address = -1, permille = 0;
+    if (!(ls >> t >> kind >> address >> permille) || kind != "hr" || address != 0) continue;
+    if (permille <= 0 || permille > static_cast<int>(sent_s.size())) continue;  // neutral
+    const double age_s = t - sent_s[static_cast<std::size_t>(permille - 1)];
+    oldest_s = std::max(oldest_s, age_s);
+    if (age_s * 1e3 > fresh_ms) ++stale;
+    if (t > resumed_s) ++executed_after_resume;
+  }
+  std::printf(
+      "bus_io figures: 1 s stall: %d commands executed after the peer resumed, %d of them "
+      "stale (older than %.0f ms; the oldest %.0f ms)\n",
+      executed_after_resume, stale, fresh_ms, oldest_s * 1e3);
+  EXPECT_GT(executed_after_resume, 10);  // the bus came back and carried on
+  // Without the read-only probing each failed cycle of the stall queued one more (8 here).
+  EXPECT_LE(stale, mp.retries + 1);
+}
 
 TEST(BusIoModbusHungPeer, FinalDisarmIsReportedNotAcknowledged) {
   ROVCTL_REQUIRE_TOOL(test::have_pymodbus(), "/usr/bin/python3 has no usable pymodbus");
