@@ -2,6 +2,9 @@
 // telemetry and publishes what the bus said; the tick only touches lock-free slots and atomics.
 #include "app/runtime/bus_io_thread.hpp"
 
+#include <pthread.h>
+#include <sched.h>
+
 #include <cerrno>
 #include <ctime>
 
@@ -70,6 +73,10 @@ void BusIoThread::record_ack(std::chrono::nanoseconds now) {
 
 void BusIoThread::run() {
   make_thread_non_realtime();
+  // SCHED_BATCH: the tick's hand-over wakes this thread, and without SCHED_FIFO on the tick
+  // (a bench, the simulation) the scheduler would let the woken thread preempt the tick midway.
+  sched_param batch{};
+  pthread_setschedparam(pthread_self(), SCHED_BATCH, &batch);
   std::uint32_t answered = 0;
   bool probing = false;  // a command went unanswered: reads only until the peer answers
   while (true) {

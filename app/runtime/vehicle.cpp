@@ -161,7 +161,7 @@ std::vector<ThreadSpec> Vehicle::threads() const {
                    us(config_.scheduler.period_ms),
                    "capture, estimate, control, actuate, telemetry record; allocates nothing"});
   if (bus_io_) {
-    table.push_back({"bus I/O", "SCHED_OTHER", us(config_.scheduler.period_ms),
+    table.push_back({"bus I/O", "SCHED_BATCH", us(config_.scheduler.period_ms),
                      "newest command to the thruster bus, telemetry back; the tick never waits "
                      "for the peer"});
   }

@@ -26,7 +26,7 @@ namespace rovctl::app {
 // One row of the thread table (as PX4 lists its work queues): who runs, how and how often.
 struct ThreadSpec {
   std::string name;
-  std::string policy;  // "SCHED_FIFO 80" or "SCHED_OTHER"
+  std::string policy;  // "SCHED_FIFO 80", "SCHED_OTHER" or "SCHED_BATCH"
   std::chrono::microseconds period{0};
   std::string role;
 };
