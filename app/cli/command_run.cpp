@@ -103,7 +103,11 @@ int command_run(const Words& words) {
   notifier.stopping();
   if (vehicle.loop().failsafe().tripped()) code = kExitRuntimeFailure;
   if (!quiet) std::cerr << vehicle.scheduler().report();
-  vehicle.make_safe();
+  if (!vehicle.shutdown(error)) {
+    // A controller that never heard "disarm" is not known to be safe: say so, and fail.
+    std::cerr << "rovctl run: " << error << "\n";
+    code = kExitRuntimeFailure;
+  }
   if (!quiet) {
     std::cerr << "rovctl run: stopped after " << vehicle.loop().ticks() << " ticks, mission "
               << control::to_string(vehicle.loop().mission().state()) << "\n";

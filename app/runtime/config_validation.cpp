@@ -245,6 +245,12 @@ void validate_app_config(AppConfig& config) {
     throw ConfigError(config_location(config, "validation.baseline_min_m") +
                       ": must be below validation.baseline_max_m");
   }
+  const drivers::BusTimingParams& bus = config.thruster_bus.timing;
+  if (!(bus.degraded_ms < bus.watchdog_ms)) {
+    throw ConfigError(config_location(config, "thruster_bus.timing.degraded_ms") +
+                      ": must be below thruster_bus.timing.watchdog_ms (a slow bus is reported "
+                      "before the controller stops on it)");
+  }
   check_thrusters(config);
   check_marker(config);
   check_contact(config);

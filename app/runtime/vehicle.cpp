@@ -13,6 +13,17 @@ namespace {
 
 constexpr std::chrono::milliseconds kLoggerPeriod{50};
 
+// Only a real bus on a real clock gets the I/O thread. The mock bus answers at once in-process
+// (nothing to hide) and drives the simulated world that the tick's mock camera renders without a
+// lock: on another thread it would race. And in virtual time (a stepped `rovctl sim`, or a test's
+// wrapper around the mock) the order of command and physics step would depend on the OS
+// scheduler, and commands would look stale after a virtual-time jump: stepped synchronously the
+// simulation stays deterministic.
+bool needs_io_thread(const VehicleBackends& b) {
+  if (!b.real_bus || b.bus != b.real_bus.get()) return false;
+  return !b.sim || b.sim->clock().mode() == hal::mock::SimClock::Mode::realtime;
+}
+
 std::chrono::microseconds us(double ms) {
   return std::chrono::microseconds(static_cast<std::int64_t>(ms * 1000.0));
 }
@@ -24,13 +35,18 @@ Vehicle::Vehicle(const AppConfig& config, const hal::StereoRig& rig, VehicleBack
     : config_(config),
       options_(std::move(options)),
       backends_(std::move(backends)),
+      bus_io_(needs_io_thread(backends_)
+                  ? std::make_unique<BusIoThread>(*backends_.bus, *backends_.clock,
+                                                  config.thruster_bus.timing)
+                  : nullptr),
+      bus_(bus_io_ ? static_cast<hal::ThrusterBus*>(bus_io_.get()) : backends_.bus),
       scheduler_(std::make_unique<CyclicScheduler>(*backends_.clock, config.scheduler)),
       ring_(std::max(static_cast<std::size_t>(config.telemetry.ring_capacity),
                      options_.min_ring_capacity)) {
   const bool telemetry_on = config.telemetry.enabled || !options_.helper_threads;
-  loop_ = std::make_unique<VehicleLoop>(config, rig, *backends_.camera, *backends_.bus,
-                                        backends_.sensors, *scheduler_,
-                                        telemetry_on ? &ring_ : nullptr, options_.seed);
+  loop_ =
+      std::make_unique<VehicleLoop>(config, rig, *backends_.camera, *bus_, backends_.sensors,
+                                    *scheduler_, telemetry_on ? &ring_ : nullptr, options_.seed);
   loop_->attach_operator(options_.operator_link);
 }
 
@@ -39,7 +55,7 @@ Vehicle::~Vehicle() {
   stop_helpers();
   if (opened_) {
     try {
-      backends_.bus->close();
+      bus_->close();
       backends_.camera->close();
     } catch (...) {
       // A destructor must not throw; the bus's own close already commanded neutral.
@@ -49,7 +65,7 @@ Vehicle::~Vehicle() {
 
 bool Vehicle::open(std::string& error) {
   if (!backends_.camera->open(error)) return false;
-  if (!backends_.bus->open(error)) {
+  if (!bus_->open(error)) {
     backends_.camera->close();
     return false;
   }
@@ -76,6 +92,20 @@ const SchedulerStats& Vehicle::run(std::uint64_t max_ticks,
     make_safe();
     throw;
   }
+}
+
+bool Vehicle::shutdown(std::string& error) {
+  make_safe();
+  if (!opened_) return true;
+  bus_->close();  // the I/O thread's final neutral + disarm, waited for at most close_timeout_ms
+  if (bus_io_ && !bus_io_->safe_acknowledged()) {
+    error = bus_->name() + ": the final neutral and disarm were not acknowledged within " +
+            std::to_string(config_.thruster_bus.timing.close_timeout_ms) +
+            " ms (thruster_bus.timing.close_timeout_ms); the controller's watchdog is what stops "
+            "the thrusters now";
+    return false;
+  }
+  return true;
 }
 
 const RealtimeSetupResult& Vehicle::enter_realtime() {
@@ -130,6 +160,11 @@ std::vector<ThreadSpec> Vehicle::threads() const {
                    rt.sched_fifo ? "SCHED_FIFO " + std::to_string(rt.priority) : "SCHED_OTHER",
                    us(config_.scheduler.period_ms),
                    "capture, estimate, control, actuate, telemetry record; allocates nothing"});
+  if (bus_io_) {
+    table.push_back({"bus I/O", "SCHED_BATCH", us(config_.scheduler.period_ms),
+                     "newest command to the thruster bus, telemetry back; the tick never waits "
+                     "for the peer"});
+  }
   if (options_.helper_threads) {
     if (config_.telemetry.enabled) {
       table.push_back({"telemetry writer", "SCHED_OTHER", us(config_.telemetry.drain_period_ms),

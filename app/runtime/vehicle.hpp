@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "app/runtime/app_config.hpp"
+#include "app/runtime/bus_io_thread.hpp"
 #include "app/runtime/cyclic_scheduler.hpp"
 #include "app/runtime/operator_link.hpp"
 #include "app/runtime/telemetry.hpp"
@@ -25,7 +26,7 @@ namespace rovctl::app {
 // One row of the thread table (as PX4 lists its work queues): who runs, how and how often.
 struct ThreadSpec {
   std::string name;
-  std::string policy;  // "SCHED_FIFO 80" or "SCHED_OTHER"
+  std::string policy;  // "SCHED_FIFO 80", "SCHED_OTHER" or "SCHED_BATCH"
   std::chrono::microseconds period{0};
   std::string role;
 };
@@ -67,6 +68,12 @@ class Vehicle {
   void request_stop() noexcept { scheduler_->request_stop(); }
   // Neutral and disarm; idempotent, never throws (a bus that fails here is reported by the loop).
   void make_safe() noexcept;
+  // The end of a flight: neutral and disarm, then the bus closed. False, with a reason naming
+  // the bus, when a real bus did not acknowledge the final neutral and disarm in time.
+  bool shutdown(std::string& error);
+
+  // The real bus's I/O thread (null when the bus is the mock's), for its statistics.
+  const BusIoThread* bus_io() const { return bus_io_.get(); }
 
   // The thread table of this vehicle as configured.
   std::vector<ThreadSpec> threads() const;
@@ -84,6 +91,9 @@ class Vehicle {
   const AppConfig& config_;
   VehicleOptions options_;
   VehicleBackends backends_;
+  // A real bus runs on its own I/O thread; the loop and open/close go through `bus_`.
+  std::unique_ptr<BusIoThread> bus_io_;
+  hal::ThrusterBus* bus_ = nullptr;
   std::unique_ptr<CyclicScheduler> scheduler_;
   TelemetryRing ring_;
   std::unique_ptr<VehicleLoop> loop_;

@@ -6,6 +6,8 @@ write to a holding register to --log as one line: "<monotonic s> hr <address> <v
 Input registers answer with rpm = 3 * commanded permille and fault flags = 0x100 + channel. Like
 the real controller it zeroes the commands when the heartbeat (register 16) stalls for 200 ms
 while a command is non-zero, and logs "<t> watchdog_stop". --ready-file receives "port <n>" once it serves.
+--delay-ms makes every answer that late (a slow controller or a congested line; a large value is
+a hung one).
 """
 import argparse
 import asyncio
@@ -56,6 +58,21 @@ class Controller:
                 self.log.flush()
 
 
+class SlowSlaveContext(ModbusSlaveContext):
+    """Delays every request once: pymodbus validates each request exactly once before executing
+    it, so the delay is per answer (FC06 reads its register back after writing: not twice)."""
+
+    def __init__(self, delay_s, **kwargs):
+        super().__init__(**kwargs)
+        self.delay_s = delay_s
+
+    def validate(self, fc_as_hex, address, count=1):
+        if self.delay_s > 0:
+            # The server answers one request at a time, as the real controller's UART task does.
+            time.sleep(self.delay_s)
+        return super().validate(fc_as_hex, address, count)
+
+
 class Holding(ModbusSequentialDataBlock):
     def __init__(self, controller):
         super().__init__(0, [0] * 32)
@@ -83,11 +100,13 @@ async def main():
     ap.add_argument("--slave-id", type=int, default=1)
     ap.add_argument("--log", required=True)
     ap.add_argument("--ready-file", required=True)
+    ap.add_argument("--delay-ms", type=float, default=0.0, help="answer every request this late")
     args = ap.parse_args()
 
     log = open(args.log, "w", encoding="ascii")  # pylint: disable=consider-using-with
     controller = Controller(log)
-    slave = ModbusSlaveContext(hr=controller.holding, ir=controller.inputs, zero_mode=True)
+    slave = SlowSlaveContext(args.delay_ms / 1000.0, hr=controller.holding, ir=controller.inputs,
+                             zero_mode=True)
     # Only our unit id exists; requests to any other are not answered (a silent slave).
     context = ModbusServerContext(slaves={args.slave_id: slave}, single=False)
     asyncio.get_running_loop().create_task(controller.watchdog())

@@ -109,6 +109,21 @@ TEST(ConfigValidation, ALayoutThatCannotPushAServoAxisIsRejectedAtTheThrustersLi
       << error_of(twice);
 }
 
+TEST(ConfigValidation, TheBusIsReportedDegradedBeforeTheWatchdogStopsIt) {
+  const TempDir t;
+  const std::string late = t.write(
+      "late.yaml", "calibration: " + kCalibration +
+                       "\nthruster_bus:\n  timing:\n    watchdog_ms: 200\n    degraded_ms: 250\n");
+  EXPECT_EQ(error_of(late), late +
+                                ":5: thruster_bus.timing.degraded_ms: must be below "
+                                "thruster_bus.timing.watchdog_ms (a slow bus is reported before "
+                                "the controller stops on it)");
+  const std::string fine = t.write(
+      "fine.yaml", "calibration: " + kCalibration +
+                       "\nthruster_bus:\n  timing:\n    watchdog_ms: 300\n    degraded_ms: 250\n");
+  EXPECT_EQ(error_of(fine), "");
+}
+
 TEST(ConfigValidation, AMarkerNeedsThreeColoursAtDistinctPlaces) {
   const TempDir t;
   auto marker = [&t](const std::string& name, const std::string& spheres) {

@@ -8,7 +8,9 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <stdexcept>
+#include <thread>
 
 #include "app/runtime/allocation_counter.hpp"
 #include "app/runtime/app_config.hpp"
@@ -81,6 +83,47 @@ class RecordingBus final : public hal::ThrusterBus {
   hal::ThrusterBus& inner_;
   BusLog& log_;
 };
+
+// A real bus as the vehicle sees one (not the mock's): each request takes `latency`; hung, it
+// answers nothing (fault) after its response timeout.
+class RemoteBus final : public hal::ThrusterBus {
+ public:
+  bool open(std::string&) override { return true; }
+  hal::BusStatus arm(bool armed) override {
+    if (!answer()) return hal::BusStatus::fault;
+    armed_ = armed;
+    return hal::BusStatus::ok;
+  }
+  hal::BusStatus write(const hal::ThrusterCommand&) override {
+    writes.fetch_add(1);
+    return answer() ? hal::BusStatus::ok : hal::BusStatus::degraded;
+  }
+  hal::BusStatus read(hal::ThrusterTelemetry& t) override {
+    t.valid = answer();
+    return t.valid ? hal::BusStatus::ok : hal::BusStatus::degraded;
+  }
+  void close() override {}
+  std::string name() const override { return "remote bus"; }
+
+  std::atomic<bool> hung{false};
+  std::atomic<std::uint64_t> writes{0};
+
+ private:
+  bool answer() {
+    std::this_thread::sleep_for(hung.load() ? std::chrono::milliseconds(150)
+                                            : std::chrono::milliseconds(10));
+    return !hung.load();
+  }
+  bool armed_ = false;
+};
+
+// The mock world in real time with `bus` as the vehicle's real bus (so it gets the I/O thread).
+VehicleBackends remote_bus_backends(const Fixture& f, std::unique_ptr<RemoteBus> bus) {
+  VehicleBackends backends = make_trial_backends(f.config, f.rig, f.trial(), true);
+  backends.bus = bus.get();
+  backends.real_bus = std::move(bus);
+  return backends;
+}
 
 // Heap allocations made by `ticks` ticks of the vehicle's loop (the tick's own thread only).
 std::uint64_t count_tick_allocations(Vehicle& vehicle, std::uint64_t ticks) {
@@ -260,6 +303,45 @@ TEST(Vehicle, LeavingScopeLeavesTheThrustersNeutralAndDisarmed) {
   EXPECT_FALSE(log.armed);
   EXPECT_TRUE(all_neutral(log.last));
   EXPECT_TRUE(log.closed);
+}
+
+TEST(Vehicle, ARealBusRunsOnItsIoThreadAndTheTickStillAllocatesNothing) {
+  Fixture f;
+  auto owned = std::make_unique<RemoteBus>();
+  RemoteBus& bus = *owned;
+  Vehicle vehicle(f.config, f.rig, remote_bus_backends(f, std::move(owned)), f.sim_options());
+  ASSERT_NE(vehicle.bus_io(), nullptr);
+  EXPECT_EQ(vehicle.threads().back().name, "bus I/O");
+  std::string error;
+  ASSERT_TRUE(vehicle.open(error)) << error;
+  ASSERT_TRUE(vehicle.arm(error)) << error;
+  vehicle.scheduler().run([&](const TickInfo& info) { return vehicle.loop().tick(info); }, 10);
+  EXPECT_EQ(count_tick_allocations(vehicle, 30), 0u);
+  EXPECT_GT(bus.writes.load(), 10u);  // the commands went out, from the I/O thread
+  EXPECT_TRUE(vehicle.shutdown(error)) << error;
+}
+
+TEST(Vehicle, ShutdownSaysWhenTheFinalDisarmWasNotAcknowledged) {
+  Fixture f;
+  auto owned = std::make_unique<RemoteBus>();
+  RemoteBus& bus = *owned;
+  Vehicle vehicle(f.config, f.rig, remote_bus_backends(f, std::move(owned)), f.sim_options());
+  std::string error;
+  ASSERT_TRUE(vehicle.open(error)) << error;
+  ASSERT_TRUE(vehicle.arm(error)) << error;
+  vehicle.run(5);
+  bus.hung = true;  // the peer stops answering as the mission ends
+  EXPECT_FALSE(vehicle.shutdown(error));
+  EXPECT_NE(error.find("remote bus: the final neutral and disarm were not acknowledged"),
+            std::string::npos)
+      << error;
+}
+
+TEST(Vehicle, TheMockBusStaysOnTheTickThread) {
+  Fixture f;
+  Vehicle vehicle(f.config, f.rig, make_trial_backends(f.config, f.rig, f.trial(), false),
+                  f.sim_options());
+  EXPECT_EQ(vehicle.bus_io(), nullptr);  // stepped simulation: deterministic
 }
 
 TEST(Vehicle, ListsItsThreads) {

@@ -1,0 +1,209 @@
+// The bus I/O thread: one cycle writes the newest fresh command, answers arm requests, reads the
+// telemetry and publishes what the bus said; the tick only touches lock-free slots and atomics.
+#include "app/runtime/bus_io_thread.hpp"
+
+#include <pthread.h>
+#include <sched.h>
+
+#include <cerrno>
+#include <ctime>
+
+#include "app/runtime/realtime_setup.hpp"
+
+namespace rovctl::app {
+namespace {
+
+// Long enough not to spin, short enough that a stop or arm request is seen promptly even if a
+// wake-up was missed.
+constexpr std::chrono::milliseconds kIdleWait{20};
+// Periods kept for the report: a day of 33 ms ticks would be 2.6 M; the first hour is plenty.
+constexpr std::size_t kMaxPeriods = 1 << 17;
+
+hal::BusStatus worst(hal::BusStatus a, hal::BusStatus b) {
+  return static_cast<int>(a) > static_cast<int>(b) ? a : b;
+}
+
+}  // namespace
+
+BusIoThread::BusIoThread(hal::ThrusterBus& bus, const hal::Clock& clock,
+                         const drivers::BusTimingParams& timing)
+    : bus_(bus), clock_(clock), timing_(timing), name_(bus.name()) {
+  sem_init(&wake_, 0, 0);
+  stats_.heartbeat_period_ms.reserve(kMaxPeriods);
+}
+
+BusIoThread::~BusIoThread() {
+  close();
+  sem_destroy(&wake_);
+}
+
+bool BusIoThread::open(std::string& error) {
+  if (opened_) return true;
+  if (!bus_.open(error)) return false;
+  opened_ = true;
+  closed_ = false;
+  // Opening commanded neutral and was answered: the heartbeat's first beat.
+  last_ack_ns_.store(clock_.now().count(), std::memory_order_release);
+  running_.store(true);
+  thread_ = std::thread([this]() { run(); });
+  return true;
+}
+
+void BusIoThread::wake() noexcept { sem_post(&wake_); }
+
+void BusIoThread::wait_for_work() noexcept {
+  timespec deadline{};
+  clock_gettime(CLOCK_REALTIME, &deadline);
+  deadline.tv_nsec += std::chrono::nanoseconds(kIdleWait).count();
+  if (deadline.tv_nsec >= 1'000'000'000) {
+    deadline.tv_nsec -= 1'000'000'000;
+    ++deadline.tv_sec;
+  }
+  while (sem_timedwait(&wake_, &deadline) != 0 && errno == EINTR) {
+  }
+}
+
+void BusIoThread::record_ack(std::chrono::nanoseconds now) {
+  const std::int64_t previous = last_ack_ns_.exchange(now.count(), std::memory_order_acq_rel);
+  ++stats_.acknowledged;
+  if (stats_.heartbeat_period_ms.size() < kMaxPeriods) {
+    stats_.heartbeat_period_ms.push_back(static_cast<double>(now.count() - previous) * 1e-6);
+  }
+}
+
+void BusIoThread::run() {
+  make_thread_non_realtime();
+  // SCHED_BATCH: the tick's hand-over wakes this thread, and without SCHED_FIFO on the tick
+  // (a bench, the simulation) the scheduler would let the woken thread preempt the tick midway.
+  sched_param batch{};
+  pthread_setschedparam(pthread_self(), SCHED_BATCH, &batch);
+  std::uint32_t answered = 0;
+  bool probing = false;  // a command went unanswered: reads only until the peer answers
+  while (true) {
+    wait_for_work();
+    // Arm requests first: a disarm must not wait behind a command, and arming always writes
+    // neutral before it arms (the bus's contract), so no queued command jumps ahead of it.
+    const std::uint32_t requested = arm_requested_.load(std::memory_order_acquire);
+    if (requested != answered) {
+      const hal::BusStatus s = bus_.arm(arm_value_.load(std::memory_order_acquire));
+      bus_status_.store(static_cast<int>(s), std::memory_order_release);
+      // Answered, but not a heartbeat (the controller's watchdog looks at the beat register): it
+      // restarts the gap without counting as a period.
+      if (s == hal::BusStatus::ok)
+        last_ack_ns_.store(clock_.now().count(), std::memory_order_release);
+      arm_status_.store(static_cast<int>(s), std::memory_order_release);
+      answered = requested;
+      arm_answered_.store(answered, std::memory_order_release);
+    }
+    if (const StampedCommand* c = commands_.take()) {
+      if (clock_.now() - c->stamp > std::chrono::milliseconds(timing_.command_deadline_ms)) {
+        // The tick has moved on (or stopped): late thrust is worse than none, and the
+        // controller's watchdog stops the thrusters if nothing fresher comes.
+        ++stats_.dropped_stale;
+      } else if (probing) {
+        // A request that went unanswered may still sit in a stalled peer's input (a stream
+        // cannot take it back), to be executed when it resumes: send no more commands into that
+        // queue, only telemetry reads, harmless when replayed, until one is answered.
+        ++stats_.withheld;
+        hal::ThrusterTelemetry& t = telemetry_.back();
+        if (bus_.read(t) != hal::BusStatus::fault && t.valid) {
+          telemetry_.publish();
+          probing = false;
+        }
+      } else {
+        ++stats_.written;
+        const hal::BusStatus s = bus_.write(c->command);
+        bus_status_.store(static_cast<int>(s), std::memory_order_release);
+        if (s == hal::BusStatus::ok) {
+          record_ack(clock_.now());
+          hal::ThrusterTelemetry& t = telemetry_.back();
+          if (bus_.read(t) != hal::BusStatus::fault) telemetry_.publish();
+        } else {
+          probing = true;
+        }
+      }
+    }
+    // Stop only once nothing is left to answer, so close()'s final disarm is always attempted.
+    if (!running_.load(std::memory_order_acquire) &&
+        arm_requested_.load(std::memory_order_acquire) == answered) {
+      break;
+    }
+  }
+}
+
+std::chrono::nanoseconds BusIoThread::heartbeat_age() const {
+  return clock_.now() - std::chrono::nanoseconds(last_ack_ns_.load(std::memory_order_acquire));
+}
+
+hal::BusStatus BusIoThread::status_now() const {
+  if (!opened_ || closed_) return hal::BusStatus::fault;
+  const std::chrono::nanoseconds age = heartbeat_age();
+  const hal::BusStatus gap =
+      age > std::chrono::milliseconds(timing_.watchdog_ms)   ? hal::BusStatus::fault
+      : age > std::chrono::milliseconds(timing_.degraded_ms) ? hal::BusStatus::degraded
+                                                             : hal::BusStatus::ok;
+  return worst(gap, static_cast<hal::BusStatus>(bus_status_.load(std::memory_order_acquire)));
+}
+
+hal::BusStatus BusIoThread::write(const hal::ThrusterCommand& command) {
+  if (!opened_ || closed_) return hal::BusStatus::fault;
+  StampedCommand& slot = commands_.back();
+  slot.command = command;
+  slot.stamp = clock_.now();
+  commands_.publish();
+  wake();
+  return status_now();
+}
+
+hal::BusStatus BusIoThread::read(hal::ThrusterTelemetry& telemetry) {
+  if (const hal::ThrusterTelemetry* t = telemetry_.take()) last_telemetry_ = *t;
+  telemetry = last_telemetry_;
+  return status_now();
+}
+
+bool BusIoThread::request_arm(bool armed, hal::BusStatus& answer) {
+  arm_value_.store(armed, std::memory_order_release);
+  const std::uint32_t ticket = arm_requested_.fetch_add(1, std::memory_order_acq_rel) + 1;
+  wake();
+  const auto until =
+      std::chrono::steady_clock::now() + std::chrono::milliseconds(timing_.close_timeout_ms);
+  while (arm_answered_.load(std::memory_order_acquire) != ticket) {
+    if (std::chrono::steady_clock::now() >= until) return false;
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  }
+  answer = static_cast<hal::BusStatus>(arm_status_.load(std::memory_order_acquire));
+  return true;
+}
+
+hal::BusStatus BusIoThread::arm(bool armed) {
+  if (!opened_ || closed_) return hal::BusStatus::fault;
+  if (!armed) {
+    arm_value_.store(false, std::memory_order_release);
+    arm_requested_.fetch_add(1, std::memory_order_acq_rel);
+    wake();
+    return status_now();
+  }
+  hal::BusStatus answer = hal::BusStatus::fault;
+  if (!request_arm(true, answer)) return hal::BusStatus::fault;  // no answer in time
+  return answer;
+}
+
+void BusIoThread::close() {
+  if (closed_) return;
+  if (opened_ && thread_.joinable()) {
+    // The disarm writes neutral first (the bus's contract): both answered ok, or not safe.
+    hal::BusStatus answer = hal::BusStatus::fault;
+    safe_acknowledged_ = request_arm(false, answer) && answer == hal::BusStatus::ok;
+    running_.store(false, std::memory_order_release);
+    wake();
+    // Bounded by the bus's own timeouts: the thread is inside at most one transaction (and the
+    // disarm it still owes).
+    thread_.join();
+    stats_.superseded =
+        commands_.published() - stats_.written - stats_.dropped_stale - stats_.withheld;
+  }
+  closed_ = true;
+  bus_.close();
+}
+
+}  // namespace rovctl::app
