@@ -1,7 +1,7 @@
 // Weighted pseudo-inverse allocation with direction-preserving saturation.
 #include "control/control_allocation_pseudo_inverse.hpp"
 
-#include <Eigen/QR>
+#include <Eigen/SVD>
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
@@ -33,17 +33,88 @@ ControlAllocator::ControlAllocator(const hal::ThrusterLayout& layout,
   if (!(axis.minCoeff() > 0.0)) {
     throw std::invalid_argument("control.allocation: axis weights must be positive");
   }
-  const Eigen::VectorXd u_inv_sqrt = effort.cwiseSqrt().cwiseInverse();
-  const Wrench t_sqrt = axis.cwiseSqrt();
-  const Eigen::MatrixXd B = effectiveness_.matrix();
-  const Eigen::MatrixXd scaled = t_sqrt.asDiagonal() * B * u_inv_sqrt.asDiagonal();
-  const Eigen::MatrixXd pinv = scaled.completeOrthogonalDecomposition().pseudoInverse();
-  mix_ = u_inv_sqrt.asDiagonal() * pinv * t_sqrt.asDiagonal();
+  for (std::size_t i = 0; i < n; ++i) {
+    effort_[i] = effort[static_cast<Eigen::Index>(i)];
+    active_[i] = true;
+  }
+  axis_weights_ = axis;
+  compute_mix();
 
   for (std::size_t i = 0; i < n; ++i) {
     channel_count_ =
         std::max(channel_count_, static_cast<std::size_t>(effectiveness_.channel(i)) + 1);
   }
+}
+
+namespace {
+
+using Full = Eigen::Matrix<double, 6, hal::kMaxThrusters>;
+
+// Singular values above this fraction of the largest count towards the rank.
+constexpr double kRankTolerance = 1e-9;
+
+template <int Rows>
+int rank_of(const Eigen::Matrix<double, Rows, static_cast<int>(hal::kMaxThrusters)>& m) {
+  const Eigen::JacobiSVD<Eigen::Matrix<double, Rows, static_cast<int>(hal::kMaxThrusters)>> svd(m);
+  const auto& sigma = svd.singularValues();
+  int rank = 0;
+  for (Eigen::Index k = 0; k < sigma.size(); ++k) {
+    if (sigma[k] > kRankTolerance * sigma[0] && sigma[k] > 0.0) ++rank;
+  }
+  return rank;
+}
+
+}  // namespace
+
+void ControlAllocator::compute_mix() {
+  // Effort weights W_u (min f' W_u f) and axis weights W_t (min |W_t^1/2 (B f - tau)|):
+  // f = W_u^-1/2 pinv(W_t^1/2 B W_u^-1/2) W_t^1/2 tau, exact whenever B has full row rank. A
+  // removed thruster is a zero column, so it gets no thrust. Fixed-size throughout: no heap.
+  const std::size_t n = effectiveness_.count();
+  Full B = Full::Zero();
+  Eigen::Matrix<double, hal::kMaxThrusters, 1> u_inv_sqrt =
+      Eigen::Matrix<double, hal::kMaxThrusters, 1>::Zero();
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!active_[i]) continue;
+    B.col(static_cast<Eigen::Index>(i)) = effectiveness_.matrix().col(static_cast<Eigen::Index>(i));
+    u_inv_sqrt[static_cast<Eigen::Index>(i)] = 1.0 / std::sqrt(effort_[i]);
+  }
+  Eigen::Matrix<double, 4, hal::kMaxThrusters> servo_rows;
+  servo_rows << B.topRows<3>(), B.row(5);
+  servo_axes_controllable_ = rank_of<4>(servo_rows) == 4;
+  Wrench t_sqrt = axis_weights_.cwiseSqrt();
+  if (active_count() < n && rank_of<6>(B) < 6) {
+    // A failure coupled roll and pitch to the servo's axes: let them go rather than x, y, z, yaw
+    // (the vehicle is passively stable in roll and pitch).
+    t_sqrt[3] *= 1e-3;
+    t_sqrt[4] *= 1e-3;
+  }
+  const Full scaled = t_sqrt.asDiagonal() * B * u_inv_sqrt.asDiagonal();
+  const Eigen::JacobiSVD<Full> svd(scaled, Eigen::ComputeFullU | Eigen::ComputeFullV);
+  const Wrench& sigma = svd.singularValues();
+  Wrench sigma_inv = Wrench::Zero();
+  for (Eigen::Index k = 0; k < 6; ++k) {
+    if (sigma[k] > kRankTolerance * sigma[0] && sigma[k] > 0.0) sigma_inv[k] = 1.0 / sigma[k];
+  }
+  const Eigen::Matrix<double, hal::kMaxThrusters, 6> pinv =
+      svd.matrixV().leftCols<6>() * sigma_inv.asDiagonal() * svd.matrixU().transpose();
+  const Eigen::Matrix<double, hal::kMaxThrusters, 6> mix =
+      u_inv_sqrt.asDiagonal() * pinv * t_sqrt.asDiagonal();
+  mix_ = mix.topRows(static_cast<Eigen::Index>(n));
+}
+
+bool ControlAllocator::remove_thruster(std::size_t i) {
+  if (i < effectiveness_.count() && active_[i]) {
+    active_[i] = false;
+    compute_mix();
+  }
+  return servo_axes_controllable_;
+}
+
+std::size_t ControlAllocator::active_count() const {
+  std::size_t c = 0;
+  for (std::size_t i = 0; i < effectiveness_.count(); ++i) c += active_[i] ? 1 : 0;
+  return c;
 }
 
 void ControlAllocator::neutral(hal::ThrusterCommand& command) const {

@@ -1,8 +1,11 @@
-// Thruster allocation: a weighted pseudo-inverse of the effectiveness matrix, computed once at
-// start-up; saturation scales the whole thrust vector so the wrench keeps its direction.
+// Thruster allocation: a weighted pseudo-inverse of the effectiveness matrix, computed at start-up
+// and again, without allocating, when a thruster fails and is removed (as PX4's ControlAllocator
+// does); saturation scales the whole thrust vector so the wrench keeps its direction.
 #pragma once
 
 #include <Eigen/Core>
+#include <array>
+#include <cstddef>
 
 #include "control/control_params.hpp"
 #include "control/thruster_effectiveness.hpp"
@@ -30,13 +33,30 @@ class ControlAllocator {
   // Sets every channel of the layout to neutral.
   void neutral(hal::ThrusterCommand& command) const;
 
+  // Takes thruster i (layout index) out of the allocation: its command stays neutral and the
+  // pseudo-inverse is recomputed over the others. When they can no longer produce roll and pitch
+  // independently, those axes are given up first so x, y, z and yaw stay exact. Returns
+  // servo_axes_controllable(). No allocation (it runs in the tick, at the failure).
+  bool remove_thruster(std::size_t i);
+  bool active(std::size_t i) const { return active_[i]; }
+  std::size_t active_count() const;
+  // Whether the active thrusters can produce any force in x, y, z and any yaw moment (roll and
+  // pitch left free): the axes the visual servo uses.
+  bool servo_axes_controllable() const { return servo_axes_controllable_; }
+
   const ThrusterEffectiveness& effectiveness() const { return effectiveness_; }
   const MixMatrix& mix() const { return mix_; }
 
  private:
+  void compute_mix();
+
   ThrusterEffectiveness effectiveness_;
   MixMatrix mix_;
   std::size_t channel_count_ = 0;
+  std::array<double, hal::kMaxThrusters> effort_{};  // W_u, by layout index
+  Wrench axis_weights_ = Wrench::Ones();             // W_t
+  std::array<bool, hal::kMaxThrusters> active_{};
+  bool servo_axes_controllable_ = false;
 };
 
 }  // namespace rovctl::control

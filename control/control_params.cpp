@@ -92,6 +92,28 @@ void describe(hal::ParamVisitor& v, ControlParams& p) {
             [&p](hal::ParamVisitor& s) { describe(s, p.allocation); });
   v.section("failsafe", "run-time fault monitors and the safe state",
             [&p](hal::ParamVisitor& s) { describe(s, p.failsafe); });
+  v.section("thruster_health", "failed thrusters detected from ESC telemetry, then not allocated",
+            [&p](hal::ParamVisitor& s) { describe(s, p.thruster_health); });
+}
+
+void describe(hal::ParamVisitor& v, ThrusterHealthParams& p) {
+  v.param("enabled", p.enabled, "read the ESCs' telemetry each tick and drop failed thrusters");
+  v.param("full_thrust_rpm", p.full_thrust_rpm,
+          {"rpm", 100.0, 100000.0, "propeller speed at full thrust"});
+  v.param("time_constant_s", p.time_constant_s,
+          {"s", 0.0, 2.0, "lag of the thrust behind its command, for the expected rpm"});
+  v.param("min_expected_rpm", p.min_expected_rpm,
+          {"rpm", 0.0, 100000.0, "expected rpm below which the rpm ratio is not judged"});
+  v.param("stuck_idle_rpm", p.stuck_idle_rpm,
+          {"rpm", 0.0, 100000.0, "rpm that, with next to none expected, means a stuck thruster"});
+  v.param("dead_rpm_ratio", p.dead_rpm_ratio, {"-", 0.0, 1.0, "rpm / expected below this: dead"});
+  v.param("weak_rpm_ratio", p.weak_rpm_ratio, {"-", 0.0, 1.0, "rpm / expected below this: weak"});
+  v.param("overspeed_rpm_ratio", p.overspeed_rpm_ratio,
+          {"-", 1.0, 100.0, "rpm / expected above this (or reversed): stuck"});
+  v.param("fault_flag_ticks", p.fault_flag_ticks,
+          {"ticks", 1, 1000, "consecutive ticks an ESC fault flag must last to fail the thruster"});
+  v.param("mismatch_ticks", p.mismatch_ticks,
+          {"ticks", 1, 1000, "consecutive ticks an rpm mismatch must last to fail the thruster"});
 }
 
 void describe(hal::ParamVisitor& v, RechargeParams& p) {

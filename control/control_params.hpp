@@ -99,11 +99,37 @@ struct AttitudeParams {
 
 void describe(hal::ParamVisitor& v, AttitudeParams& p);
 
+// Thruster health from the ESCs' telemetry (ThrusterHealth): a thruster whose ESC flags a fault,
+// or whose rpm does not follow its command, for long enough is failed and leaves the allocation.
+struct ThrusterHealthParams {
+  bool enabled = true;
+  // rpm at full thrust (T200 at 16 V); the expected rpm grows with the square root of the thrust.
+  double full_thrust_rpm = 3800.0;
+  // The expected thrust follows the command with the motors' spin-up lag.
+  double time_constant_s = 0.10;
+  // Below this expected rpm the ratio tests say nothing (deadband, sign changes); a thruster
+  // turning faster than stuck_idle_rpm there does not follow its command.
+  double min_expected_rpm = 800.0;
+  double stuck_idle_rpm = 1200.0;
+  // rpm / expected rpm: below dead_rpm_ratio the thruster is dead, below weak_rpm_ratio weak,
+  // above overspeed_rpm_ratio (or the wrong sign) stuck. A weak thruster at 30 % of its thrust
+  // turns at sqrt(0.3) = 55 % of its rpm.
+  double dead_rpm_ratio = 0.15;
+  double weak_rpm_ratio = 0.7;
+  double overspeed_rpm_ratio = 1.6;
+  // Consecutive ticks a symptom must last: a fault flag, an rpm mismatch.
+  int fault_flag_ticks = 2;
+  int mismatch_ticks = 10;
+};
+
+void describe(hal::ParamVisitor& v, ThrusterHealthParams& p);
+
 struct ControlParams {
   ServoParams servo;
   AttitudeParams attitude;
   AllocationParams allocation;
   FailsafeParams failsafe;
+  ThrusterHealthParams thruster_health;
 };
 
 void describe(hal::ParamVisitor& v, ControlParams& p);

@@ -22,6 +22,8 @@ const char* to_string(FailsafeCause c) {
       return "mission failed";
     case FailsafeCause::mission_time:
       return "mission time limit";
+    case FailsafeCause::thruster_fault:
+      return "thruster fault";
   }
   return "?";
 }
@@ -58,6 +60,7 @@ FailsafeCause Failsafe::check(const FailsafeInput& in) {
   if (in.bus == hal::BusStatus::fault || bus_degraded_ > p_.bus_degraded_ticks) {
     return FailsafeCause::bus_fault;
   }
+  if (in.thrusters_uncontrollable) return FailsafeCause::thruster_fault;
   if (!in.T_cl_marker.matrix().allFinite() || !std::isfinite(in.fitness)) {
     return FailsafeCause::estimate_not_finite;
   }

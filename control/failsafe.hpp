@@ -27,6 +27,7 @@ enum class FailsafeCause {
   wrench_not_finite,    // NaN/inf in the commanded wrench
   mission_failed,       // the mission gave up (retries exhausted, search timed out)
   mission_time,         // the mission ran longer than allowed
+  thruster_fault,       // failed thrusters left x, y, z or yaw uncontrollable
 };
 const char* to_string(FailsafeCause c);
 
@@ -44,6 +45,8 @@ struct FailsafeInput {
   Wrench wrench_body = Wrench::Zero();  // this tick's commanded wrench
   MissionState mission = MissionState::search;
   bool at_station = false;  // the probe in or at the socket (Mission::at_station())
+  // The thrusters still allocated cannot control x, y, z and yaw (ThrusterHealth, allocator).
+  bool thrusters_uncontrollable = false;
 };
 
 struct FailsafeEvent {

@@ -29,11 +29,12 @@ constexpr double kRechargeMaxTimeS = 400.0;
 }  // namespace
 
 int command_sim(const Words& words) {
-  const CliArgs args = CliArgs::parse(
-      "sim", words,
-      {"--config", "--trials", "--seed", "--out", "--jobs", "--max-time", "--plots", "--scenario",
-       "--mission", "--serve", "--token", "--serve-linger", "--charge-fault", "--first-trial"},
-      {"--realtime", "--json", "--verbose", "--hold"});
+  const CliArgs args =
+      CliArgs::parse("sim", words,
+                     {"--config", "--trials", "--seed", "--out", "--jobs", "--max-time", "--plots",
+                      "--scenario", "--mission", "--serve", "--token", "--serve-linger",
+                      "--charge-fault", "--first-trial", "--thruster-fault"},
+                     {"--realtime", "--json", "--verbose", "--hold"});
   const std::string config_file =
       args.has("--config") ? args.get("--config") : default_config_path();
   const int trials = static_cast<int>(args.get_int("--trials", 1, 1, 100000));
@@ -87,6 +88,15 @@ int command_sim(const Words& words) {
           "rovctl sim: --charge-fault needs the recharging mission (--mission recharge)");
     }
     apply_charge_fault(*fault, config, options);
+  }
+  if (args.has("--thruster-fault")) {
+    // One thruster (drawn per trial) dead, weak or stuck at a random time in APPROACH.
+    const std::string name = args.get("--thruster-fault");
+    if (name != "dead" && name != "weak" && name != "stuck") {
+      throw UsageError("rovctl sim: --thruster-fault must be dead, weak or stuck, got '" + name +
+                       "'");
+    }
+    options.thruster_fault = name;
   }
   if (args.has("--scenario")) {
     // Overrides sim.scenario, checked here so that a typo is a usage error before any trial.

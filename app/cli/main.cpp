@@ -17,6 +17,7 @@ commands:
   sim        [--config FILE] [--trials N] [--seed S] [--realtime] [--json] [--out DIR]
              [--mission dock|recharge] [--scenario NAME] [--jobs N] [--max-time S]
              [--first-trial I] [--charge-fault FAULT]
+             [--thruster-fault dead|weak|stuck]
              closed-loop docking (or dock, charge, undock: --mission recharge) on the mock
              HAL; NAME: clear, turbid, side_light, bubbles, occluders, noisy, exposure;
              FAULT (recharge, injected mid-charge): none, knock, knocks, surge, charger,

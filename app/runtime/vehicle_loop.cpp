@@ -25,7 +25,14 @@ void put_pose(const Eigen::Isometry3d& T, std::array<double, 3>& t, std::array<d
 std::string format_event(const LoopEvent& e) {
   char line[256];
   const double t = std::chrono::duration<double>(e.time).count();
-  if (e.failsafe) {
+  if (e.thruster >= 0) {
+    std::snprintf(line, sizeof(line),
+                  "%9.3f s  THRUSTER %d (channel %d) failed at tick %llu: %s -> removed from the "
+                  "allocation, %zu left, x y z yaw %s",
+                  t, e.thruster, e.thruster_channel, static_cast<unsigned long long>(e.tick),
+                  control::to_string(e.thruster_failure), e.thrusters_left,
+                  e.servo_axes_controllable ? "controllable" : "NOT controllable");
+  } else if (e.failsafe) {
     std::snprintf(line, sizeof(line), "%9.3f s  FAILSAFE %s -> %s", t, control::to_string(e.cause),
                   control::to_string(e.action));
   } else {
@@ -48,6 +55,7 @@ VehicleLoop::VehicleLoop(const AppConfig& config, const hal::StereoRig& rig,
       servo_(config.control.servo, config.vehicle.T_body_cl()),
       attitude_(config.control.attitude),
       allocator_(config.vehicle.thrusters, config.control.allocation),
+      health_(allocator_.effectiveness(), config.control.thruster_health),
       mission_(config.mission, config.vehicle.T_body_cl(),
                hal::docked_T_cl_marker(config.vehicle.T_body_cl(), config.vehicle.probe_tip_body_m,
                                        config.station),
@@ -78,6 +86,32 @@ void VehicleLoop::disarm() {
 
 void VehicleLoop::queue(const LoopEvent& e) {
   if (!events_.try_push(e)) ++dropped_events_;
+}
+
+void VehicleLoop::check_thrusters(std::chrono::nanoseconds now, std::chrono::nanoseconds period) {
+  if (!config_.control.thruster_health.enabled) return;
+  // A bus that cannot be read is the bus fault's business (its write status), not a thruster's.
+  if (bus_.read(thruster_telemetry_) == hal::BusStatus::fault) return;
+  // command_ is what the previous tick wrote: what the thrusters answer now.
+  if (health_.update(thruster_telemetry_, command_,
+                     std::chrono::duration<double>(period).count()) == 0) {
+    return;
+  }
+  for (std::size_t i = 0; i < allocator_.effectiveness().count(); ++i) {
+    if (!health_.failed(i) || !allocator_.active(i)) continue;
+    thrusters_uncontrollable_ = !allocator_.remove_thruster(i);
+    LoopEvent e;
+    e.time = now;
+    e.from = e.to = mission_.state();
+    e.aborts = mission_.aborts();
+    e.thruster = static_cast<int>(i);
+    e.thruster_channel = allocator_.effectiveness().channel(i);
+    e.thruster_failure = health_.failure(i);
+    e.tick = ticks_;
+    e.thrusters_left = allocator_.active_count();
+    e.servo_axes_controllable = !thrusters_uncontrollable_;
+    queue(e);
+  }
 }
 
 bool VehicleLoop::tick(const TickInfo& info) {
@@ -123,6 +157,7 @@ bool VehicleLoop::tick(const TickInfo& info) {
   control::SafeAction action = control::SafeAction::none;
   {
     auto timer = scheduler_.stage(Stage::control);
+    check_thrusters(now, info.period);
     bool contact = false;
     const bool have_readings = sensors_ != nullptr && sensors_->read(readings_);
     if (have_readings) contact = readings_.dock_contact_valid && readings_.dock_contact;
@@ -216,6 +251,7 @@ bool VehicleLoop::tick(const TickInfo& info) {
     fs.wrench_body = wrench;
     fs.mission = out.state;
     fs.at_station = mission_.at_station();
+    fs.thrusters_uncontrollable = thrusters_uncontrollable_;
     action = failsafe_.update(fs);
     if (action == control::SafeAction::back_out && !backing_out) {
       // Tripped this tick: the mission backs out too (logged), from this tick's command on.

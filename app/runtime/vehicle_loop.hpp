@@ -19,6 +19,7 @@
 #include "control/failsafe.hpp"
 #include "control/mission.hpp"
 #include "control/pd_visual_servo.hpp"
+#include "control/thruster_health.hpp"
 #include "estimator/pose_estimator.hpp"
 #include "hal/interfaces/sensors.hpp"
 #include "hal/interfaces/stereo_camera.hpp"
@@ -28,7 +29,8 @@
 
 namespace rovctl::app {
 
-// A mission transition or failsafe trip, handed from the tick to whoever logs (POD, no heap).
+// A mission transition, failsafe trip or thruster failure, handed from the tick to whoever logs
+// (POD, no heap).
 struct LoopEvent {
   std::chrono::nanoseconds time{0};
   bool failsafe = false;
@@ -38,6 +40,13 @@ struct LoopEvent {
   control::SafeAction action = control::SafeAction::none;
   const char* reason = "";  // static string
   int aborts = 0;
+  // A thruster failed and was removed from the allocation (thruster >= 0: its layout index).
+  int thruster = -1;
+  int thruster_channel = -1;
+  control::ThrusterFailure thruster_failure = control::ThrusterFailure::none;
+  std::uint64_t tick = 0;
+  std::size_t thrusters_left = 0;
+  bool servo_axes_controllable = true;
 };
 std::string format_event(const LoopEvent& e);
 
@@ -73,6 +82,8 @@ class VehicleLoop {
   const control::Failsafe& failsafe() const { return failsafe_; }
   const estimator::PoseEstimate& last_estimate() const { return estimate_; }
   const hal::ThrusterCommand& last_command() const { return command_; }
+  const control::ThrusterHealth& thruster_health() const { return health_; }
+  const control::ControlAllocator& allocator() const { return allocator_; }
   std::uint64_t ticks() const { return ticks_; }
   std::uint64_t recognised_ticks() const { return recognised_ticks_; }
   std::uint64_t grab_failures() const { return grab_failures_; }
@@ -80,6 +91,9 @@ class VehicleLoop {
 
  private:
   void queue(const LoopEvent& e);
+  // Reads the ESCs' telemetry, judges it against the last commands and removes newly failed
+  // thrusters from the allocation, each logged.
+  void check_thrusters(std::chrono::nanoseconds now, std::chrono::nanoseconds period);
 
   const AppConfig& config_;
   hal::StereoCamera& camera_;
@@ -93,6 +107,7 @@ class VehicleLoop {
   control::PdVisualServo servo_;
   control::AttitudeStabilizer attitude_;
   control::ControlAllocator allocator_;
+  control::ThrusterHealth health_;
   control::Mission mission_;
   control::Failsafe failsafe_;
   SpscRing<LoopEvent> events_{256};
@@ -103,6 +118,8 @@ class VehicleLoop {
   hal::ThrusterCommand command_;
   hal::ThrusterCommand neutral_;
   hal::BusStatus bus_status_ = hal::BusStatus::ok;
+  hal::ThrusterTelemetry thruster_telemetry_;
+  bool thrusters_uncontrollable_ = false;
   bool armed_ = false;
   bool disarmed_by_failsafe_ = false;
   bool operator_hold_ = false;

@@ -4,7 +4,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <iostream>
+#include <random>
 
 #include "app/runtime/vehicle.hpp"
 #include "hal/mock/battery_model.hpp"
@@ -70,7 +72,16 @@ TrialResult run_docking_trial(const AppConfig& config, const hal::StereoRig& rig
   if (!vehicle.arm(error)) throw std::runtime_error(error);
   VehicleLoop& loop = vehicle.loop();
   if (options.operator_hold_at_start) loop.hold_for_operator();
-  const hal::mock::SimulatedWorld& world = vehicle.backends().sim->world();
+  hal::mock::SimulatedWorld& sim_world = vehicle.backends().sim->world();
+  const hal::mock::SimulatedWorld& world = sim_world;
+  // The mid-approach thruster failure: which and when drawn now, injected during APPROACH.
+  std::mt19937_64 fault_rng(vehicle_options.seed ^ 0x7468727573746572ULL);
+  const int fault_thruster = std::uniform_int_distribution<int>(
+      0, static_cast<int>(config.vehicle.thrusters.thrusters.size()) - 1)(fault_rng);
+  const double fault_delay_s =
+      std::uniform_real_distribution<double>(0.0, options.thruster_fault_window_s)(fault_rng);
+  bool fault_injected = options.thruster_fault.empty();
+  double approach_start_s = -1.0;
 
   const auto max_ticks = static_cast<std::uint64_t>(
       options.max_time_s / std::chrono::duration<double>(vehicle.scheduler().period()).count());
@@ -107,6 +118,33 @@ TrialResult run_docking_trial(const AppConfig& config, const hal::StereoRig& rig
         estimate_errors_mm.push_back(r.est_error_m * 1000.0);
       }
       if (options.keep_records) result.records.push_back(r);
+    }
+    // Injected at the drawn delay into APPROACH, or on its last tick if it ends sooner (it lasts
+    // 1-3 s): always during the approach.
+    const double now_s = std::chrono::duration<double>(world.time()).count();
+    const bool approaching = loop.mission().state() == control::MissionState::approach;
+    if (!fault_injected && approaching && approach_start_s < 0.0) approach_start_s = now_s;
+    if (!fault_injected && approach_start_s >= 0.0 &&
+        (!approaching || now_s >= approach_start_s + fault_delay_s)) {
+      fault_injected = true;
+      hal::mock::FaultInjection f = config.sim.faults;
+      if (options.thruster_fault == "dead") {
+        f.thruster_dead_index = fault_thruster;
+        f.thruster_dead_at_s = now_s;
+      } else if (options.thruster_fault == "weak") {
+        f.thruster_weak_index = fault_thruster;
+        f.thruster_weak_at_s = now_s;
+      } else {
+        f.thruster_stuck_index = fault_thruster;
+        f.thruster_stuck_at_s = now_s;
+      }
+      sim_world.set_thruster_faults(f);
+      char line[128];
+      std::snprintf(line, sizeof(line), "%9.3f s  injected: thruster %d %s (%.3f s into APPROACH)",
+                    now_s, fault_thruster, options.thruster_fault.c_str(),
+                    now_s - approach_start_s);
+      result.events.push_back(line);
+      if (options.log_events) std::cerr << "trial " << conditions.index << ": " << line << "\n";
     }
     const auto& d = world.docking();
     if (result.recharge) {

@@ -26,6 +26,12 @@ struct TrialOptions {
   // The simulated operator asks to end the charge (VehicleLoop::request_undock()) once the
   // mission has been in CHARGING this long (physics time); < 0: never.
   double undock_request_after_charging_s = -1.0;
+  // One thruster fails mid-approach: "dead", "weak" or "stuck" (sim.faults.thruster_*; "" for
+  // none). Which of the layout's thrusters, and when — uniform over the first
+  // thruster_fault_window_s of APPROACH, or its last tick if it ends sooner — are drawn per trial
+  // from its seed.
+  std::string thruster_fault;
+  double thruster_fault_window_s = 2.0;
 };
 
 // One sample per tick of the recharging side, for the plots (kept with keep_records).

@@ -19,6 +19,20 @@ void describe(ParamVisitor& v, FaultInjection& f) {
   v.param(
       "charger_fails_at_s", f.charger_fails_at_s,
       {"s", -1.0, 1e6, "the station's charger delivers no current from this sim time (-1: never)"});
+  v.param("thruster_dead_index", f.thruster_dead_index,
+          {"-", 0, 7, "the thruster (index in vehicle.thrusters) that dies at thruster_dead_at_s"});
+  v.param("thruster_dead_at_s", f.thruster_dead_at_s,
+          {"s", -1.0, 1e6, "that thruster gives no thrust, rpm 0, ESC fault flag set (-1: never)"});
+  v.param("thruster_weak_index", f.thruster_weak_index,
+          {"-", 0, 7, "the thruster that turns weak at thruster_weak_at_s"});
+  v.param("thruster_weak_at_s", f.thruster_weak_at_s,
+          {"s", -1.0, 1e6, "that thruster's thrust is scaled down, no fault flag (-1: never)"});
+  v.param("thruster_weak_fraction", f.thruster_weak_fraction,
+          {"-", 0.0, 1.0, "the weak thruster's thrust as a fraction of what it should give"});
+  v.param("thruster_stuck_index", f.thruster_stuck_index,
+          {"-", 0, 7, "the thruster that sticks at thruster_stuck_at_s"});
+  v.param("thruster_stuck_at_s", f.thruster_stuck_at_s,
+          {"s", -1.0, 1e6, "that thruster holds its thrust and follows no command (-1: never)"});
   v.param("knock_after_seated_s", f.knock_after_seated_s,
           {"s", -1.0, 1e6, "a knock out of the socket once seated this long (-1: never)"});
   v.param("knock_force_n", f.knock_force_n,

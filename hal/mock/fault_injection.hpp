@@ -17,6 +17,18 @@ struct FaultInjection {
   double sensor_lost_at_s = -1.0;    // Sensors::read() returns false from then on
   double charger_fails_at_s = -1.0;  // the station's charger delivers no current from then on
 
+  // One thruster (index into vehicle.thrusters) failing at a sim time (< 0: never). Dead: no
+  // thrust, rpm 0 and its ESC's fault flag set. Weak (a fouled propeller, a worn motor): thrust
+  // scaled by thruster_weak_fraction, no flag, rpm low for the command. Stuck (a jammed ESC):
+  // holds the thrust it had and follows no further command.
+  int thruster_dead_index = 0;
+  double thruster_dead_at_s = -1.0;
+  int thruster_weak_index = 0;
+  double thruster_weak_at_s = -1.0;
+  double thruster_weak_fraction = 0.3;
+  int thruster_stuck_index = 0;
+  double thruster_stuck_at_s = -1.0;
+
   // The recharging mission's faults, timed by the seat rather than the clock (a trial docks after
   // 15-40 s): each comes once the probe has been seated that long (< 0: never).
   // A knock out of the socket (a diver's fin, a snagged line): knock_force_n along the docking

@@ -1,6 +1,8 @@
 // The simulated ESC bus: delivery into the thruster model, arming and injected bus faults.
 #include "hal/mock/mock_thruster_bus.hpp"
 
+#include <algorithm>
+#include <chrono>
 #include <cmath>
 
 namespace rovctl::hal::mock {
@@ -8,6 +10,8 @@ namespace rovctl::hal::mock {
 namespace {
 // T200 at 16 V: about 3800 rpm at full thrust; thrust grows with the square of the speed.
 constexpr double kFullThrustRpm = 3800.0;
+// What a dead thruster's ESC reports (any non-zero flag is a fault to the controller).
+constexpr std::uint16_t kInjectedFaultFlag = 0x0001;
 }  // namespace
 
 MockThrusterBus::MockThrusterBus(SimulatedWorld& world, const FaultInjection& faults)
@@ -60,13 +64,19 @@ BusStatus MockThrusterBus::read(ThrusterTelemetry& telemetry) {
   telemetry.valid = false;
   if (!open_ || timed_out()) return BusStatus::fault;
   const ThrusterModel& model = world_.thrusters();
-  telemetry.count = model.count();
+  const double now_s = std::chrono::duration<double>(world_.time()).count();
+  // By bus channel, as the real buses report.
+  telemetry.speed_rpm.fill(0.0);
+  telemetry.fault_flags.fill(0);
+  telemetry.count = 0;
   for (std::size_t i = 0; i < model.count(); ++i) {
     const double full =
         model.thrust_n(i) >= 0.0 ? model.static_thrust_n(i, 1.0) : -model.static_thrust_n(i, -1.0);
     const double ratio = full > 0.0 ? std::abs(model.thrust_n(i)) / full : 0.0;
-    telemetry.speed_rpm[i] = std::copysign(kFullThrustRpm * std::sqrt(ratio), model.thrust_n(i));
-    telemetry.fault_flags[i] = 0;
+    const auto ch = static_cast<std::size_t>(model.channel(i));
+    telemetry.speed_rpm[ch] = std::copysign(kFullThrustRpm * std::sqrt(ratio), model.thrust_n(i));
+    telemetry.fault_flags[ch] = model.fault_flagged(i, now_s) ? kInjectedFaultFlag : 0;
+    telemetry.count = std::max(telemetry.count, ch + 1);
   }
   telemetry.valid = true;
   return BusStatus::ok;

@@ -39,6 +39,7 @@ SimulatedWorld::SimulatedWorld(const SimParams& params, const VehicleGeometry& v
   T_world_marker_ = station_T_world_marker(params.station);
   T_marker_world_ = T_world_marker_.inverse();
   T_body_cl_ = vehicle.T_body_cl();
+  thrusters_.set_faults(params.faults);
 
   const double history_ms = params.camera.latency_ms + 250.0;
   history_.resize(static_cast<std::size_t>(std::ceil(history_ms / params.integration_step_ms)) + 4);

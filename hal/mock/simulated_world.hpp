@@ -80,6 +80,9 @@ class SimulatedWorld {
   void command_thrusters(const ThrusterCommand& command);
   void neutral_thrusters();
   const ThrusterModel& thrusters() const { return thrusters_; }
+  // Schedules the thruster failures of `faults` (sim.faults at construction; a trial may draw its
+  // own). Throws std::invalid_argument for a thruster the layout does not have.
+  void set_thruster_faults(const FaultInjection& faults) { thrusters_.set_faults(faults); }
 
   const VehicleState& state() const { return state_; }
   WorldTruth truth() const;

@@ -1,4 +1,5 @@
-// Thruster response: static map (deadband, saturation, asymmetry), first-order lag, ESC timeout.
+// Thruster response: static map (deadband, saturation, asymmetry), first-order lag, ESC timeout,
+// injected thruster failures.
 #include "hal/mock/thruster_model.hpp"
 
 #include <algorithm>
@@ -56,9 +57,34 @@ void ThrusterModel::step(double time_s, double dt_s) {
   const bool stale = timed_out(time_s);
   const double alpha = p_.time_constant_s > 0.0 ? 1.0 - std::exp(-dt_s / p_.time_constant_s) : 1.0;
   for (std::size_t i = 0; i < count_; ++i) {
-    const double target = stale ? 0.0 : static_thrust_n(i, command_[i]);
+    if (failing(faults_.thruster_dead_index, faults_.thruster_dead_at_s, i, time_s)) {
+      thrust_n_[i] = 0.0;
+      continue;
+    }
+    if (failing(faults_.thruster_stuck_index, faults_.thruster_stuck_at_s, i, time_s)) continue;
+    double target = stale ? 0.0 : static_thrust_n(i, command_[i]);
+    if (failing(faults_.thruster_weak_index, faults_.thruster_weak_at_s, i, time_s)) {
+      target *= faults_.thruster_weak_fraction;
+    }
     thrust_n_[i] += alpha * (target - thrust_n_[i]);
   }
+}
+
+void ThrusterModel::set_faults(const FaultInjection& faults) {
+  const auto check = [this](const char* key, int index, double at_s) {
+    if (at_s >= 0.0 && (index < 0 || static_cast<std::size_t>(index) >= count_)) {
+      throw std::invalid_argument(std::string("sim.faults.") + key + ": thruster " +
+                                  std::to_string(index) + " of " + std::to_string(count_));
+    }
+  };
+  check("thruster_dead_index", faults.thruster_dead_index, faults.thruster_dead_at_s);
+  check("thruster_weak_index", faults.thruster_weak_index, faults.thruster_weak_at_s);
+  check("thruster_stuck_index", faults.thruster_stuck_index, faults.thruster_stuck_at_s);
+  faults_ = faults;
+}
+
+bool ThrusterModel::fault_flagged(std::size_t i, double time_s) const {
+  return failing(faults_.thruster_dead_index, faults_.thruster_dead_at_s, i, time_s);
 }
 
 Eigen::Matrix<double, 6, 1> ThrusterModel::wrench_body() const {

@@ -1,5 +1,6 @@
 // The thrusters as the simulated vehicle feels them: deadband, saturation, asymmetric forward and
-// reverse thrust, first-order lag, and the ESCs' own failsafe when commands stop arriving.
+// reverse thrust, first-order lag, the ESCs' own failsafe when commands stop arriving, and the
+// injected failures of one thruster (dead, weak, stuck).
 #pragma once
 
 #include <Eigen/Core>
@@ -7,6 +8,7 @@
 #include <cstddef>
 
 #include "hal/interfaces/thruster_bus.hpp"
+#include "hal/mock/fault_injection.hpp"
 #include "hal/model/thruster_layout.hpp"
 #include "hal/primitives/parameters.hpp"
 
@@ -49,9 +51,20 @@ class ThrusterModel {
   double thrust_n(std::size_t i) const { return thrust_n_[i]; }
   double commanded_fraction(std::size_t i) const { return command_[i]; }
   bool timed_out(double time_s) const { return time_s - last_command_s_ > p_.command_timeout_s; }
+  int channel(std::size_t i) const { return channel_[i]; }
   void reset();
 
+  // The thruster failures of `faults` (thruster_dead/weak/stuck_*), timed by step()'s clock.
+  // Throws std::invalid_argument for a scheduled failure naming no thruster of the layout.
+  void set_faults(const FaultInjection& faults);
+  // Thruster i's ESC reports a fault (the dead thruster, once dead).
+  bool fault_flagged(std::size_t i, double time_s) const;
+
  private:
+  bool failing(int index, double at_s, std::size_t i, double time_s) const {
+    return at_s >= 0.0 && time_s >= at_s && static_cast<std::size_t>(index) == i;
+  }
+
   ThrusterModelParams p_;
   std::size_t count_ = 0;
   Eigen::Matrix<double, 6, kMaxThrusters> config_ = Eigen::Matrix<double, 6, kMaxThrusters>::Zero();
@@ -61,6 +74,7 @@ class ThrusterModel {
   std::array<double, kMaxThrusters> command_{};   // by thruster index
   std::array<double, kMaxThrusters> thrust_n_{};  // actual thrust now, by thruster index
   double last_command_s_ = -1e9;
+  FaultInjection faults_;
 };
 
 }  // namespace rovctl::hal::mock

@@ -7,6 +7,8 @@
 #include <cmath>
 #include <limits>
 
+#include "hal/model/vehicle_geometry.hpp"
+
 namespace rovctl::control {
 namespace {
 
@@ -173,6 +175,39 @@ TEST(ControlAllocator, NonFiniteWrenchGivesNeutral) {
   EXPECT_EQ(alloc.allocate(w, cmd), 0.0);
   EXPECT_EQ(cmd.count, 8u);
   for (double c : cmd.thrust_fraction) EXPECT_EQ(c, 0.0);
+}
+
+// The BlueROV2-heavy layout (deploy/config flies the default) without any one of its eight
+// thrusters still produces a requested x, y, z and yaw wrench: exactly while nothing saturates,
+// and the removed thruster is never commanded.
+TEST(AllocatorWithoutAThruster, AnyOneOfEightRemovedStillGivesTheRequestedWrench) {
+  const hal::ThrusterLayout layout = hal::VehicleGeometry{}.thrusters;
+  Wrench request;
+  request << 12.0, -8.0, 10.0, 0.0, 0.0, 1.2;
+  for (std::size_t removed = 0; removed < 8; ++removed) {
+    ControlAllocator allocator(layout, AllocationParams{});
+    ASSERT_TRUE(allocator.servo_axes_controllable());
+    EXPECT_TRUE(allocator.remove_thruster(removed)) << removed;
+    EXPECT_FALSE(allocator.active(removed));
+    EXPECT_EQ(allocator.active_count(), 7u);
+    hal::ThrusterCommand command;
+    const double achieved = allocator.allocate(request, command);
+    EXPECT_DOUBLE_EQ(achieved, 1.0) << removed;
+    EXPECT_EQ(command.thrust_fraction[static_cast<std::size_t>(layout.thrusters[removed].channel)],
+              0.0);
+    const Wrench produced = allocator.effectiveness().wrench_for_command(command);
+    for (int axis : {0, 1, 2, 5}) {
+      EXPECT_NEAR(produced[axis], request[axis], 0.02 * request.norm())
+          << "thruster " << removed << " removed, axis " << axis;
+    }
+  }
+}
+
+TEST(AllocatorWithoutAThruster, TwoHorizontalThrustersLostLeaveTheServoAxesUncontrollable) {
+  ControlAllocator allocator(hal::VehicleGeometry{}.thrusters, AllocationParams{});
+  EXPECT_TRUE(allocator.remove_thruster(0));  // three vectored thrusters: x, y, yaw still
+  EXPECT_FALSE(allocator.remove_thruster(1));
+  EXPECT_FALSE(allocator.servo_axes_controllable());
 }
 
 }  // namespace

@@ -213,5 +213,21 @@ TEST(Failsafe, RejectsUnknownAction) {
   EXPECT_THROW(Failsafe{p}, std::invalid_argument);
 }
 
+TEST(FailsafeThrusters, UncontrollableThrustersTripAsAThrusterFaultAndDoNotBackOut) {
+  FailsafeParams p;
+  Failsafe f(p);
+  FailsafeInput in;
+  in.at_station = true;  // a back-out needs thrusters that can push: not these
+  EXPECT_EQ(f.update(in), SafeAction::none);
+  in.now = std::chrono::milliseconds(33);
+  in.thrusters_uncontrollable = true;
+  EXPECT_EQ(f.update(in), SafeAction::disarm);
+  EXPECT_EQ(f.cause(), FailsafeCause::thruster_fault);
+  FailsafeEvent e;
+  ASSERT_TRUE(f.pop_event(e));
+  EXPECT_EQ(e.cause, FailsafeCause::thruster_fault);
+  EXPECT_STREQ(to_string(e.cause), "thruster fault");
+}
+
 }  // namespace
 }  // namespace rovctl::control

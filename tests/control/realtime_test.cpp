@@ -10,6 +10,7 @@
 #include "control/failsafe.hpp"
 #include "control/mission.hpp"
 #include "control/pd_visual_servo.hpp"
+#include "control/thruster_health.hpp"
 #include "hal/model/docking_station.hpp"
 #include "hal/model/vehicle_geometry.hpp"
 #include "malloc_counter.hpp"
@@ -85,6 +86,33 @@ TEST(Realtime, TickCallsDoNotAllocate) {
   EXPECT_EQ(t_allocations - before, 0u);
   EXPECT_TRUE(failsafe.tripped());
   EXPECT_GT(mission.aborts(), 0);
+}
+
+TEST(Realtime, ThrusterFailureAndReallocationDoNotAllocate) {
+  if (!rovctl::testing::malloc_hooks_installed()) {
+    GTEST_SKIP() << "malloc belongs to the sanitizer runtime";
+  }
+  const hal::VehicleGeometry geometry;
+  ControlParams control;
+  ControlAllocator allocator(geometry.thrusters, control.allocation);
+  ThrusterHealth health(allocator.effectiveness(), control.thruster_health);
+  hal::ThrusterCommand command;
+  Wrench w;
+  w << 20.0, -10.0, 15.0, 0.0, 0.0, 1.5;
+  allocator.allocate(w, command);
+  hal::ThrusterTelemetry tel;
+  tel.valid = true;
+  tel.count = command.count;
+  tel.fault_flags[3] = 1;
+
+  const std::uint64_t before = t_allocations;
+  std::size_t failed = 0;
+  for (int k = 0; k < 5; ++k) failed += health.update(tel, command, 0.033);
+  const bool controllable = allocator.remove_thruster(3) && allocator.remove_thruster(6);
+  allocator.allocate(w, command);
+  EXPECT_EQ(t_allocations - before, 0u);
+  EXPECT_EQ(failed, 1u);
+  EXPECT_TRUE(controllable);
 }
 
 }  // namespace

@@ -3,7 +3,9 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <limits>
+#include <stdexcept>
 
 namespace rovctl::hal::mock {
 namespace {
@@ -95,6 +97,79 @@ TEST_F(BusFixture, InjectedOpenFailureNamesTheFault) {
   EXPECT_FALSE(bus.open(error));
   EXPECT_NE(error.find("bus_open_fails"), std::string::npos);
   EXPECT_EQ(bus.write(all(0.2)), BusStatus::fault);
+}
+
+// A failure scheduled in sim.faults for thruster `index` at 0.1 s, the bus armed at +0.7.
+struct FailingThruster : BusFixture {
+  std::size_t channel(std::size_t index) const {
+    return static_cast<std::size_t>(world.thrusters().channel(index));
+  }
+  ThrusterTelemetry fly(MockThrusterBus& bus, double fraction, int until_ms) {
+    std::string error;
+    if (!bus.is_open()) {
+      EXPECT_TRUE(bus.open(error));
+      EXPECT_EQ(bus.arm(true), BusStatus::ok);
+    }
+    EXPECT_EQ(bus.write(all(fraction)), BusStatus::ok);
+    world.step_to(milliseconds(until_ms));
+    ThrusterTelemetry tel;
+    EXPECT_EQ(bus.read(tel), BusStatus::ok);
+    return tel;
+  }
+};
+
+TEST_F(FailingThruster, DeadThrusterGivesNoThrustZeroRpmAndAFaultFlag) {
+  FaultInjection f;
+  f.thruster_dead_index = 3;
+  f.thruster_dead_at_s = 0.1;
+  world.set_thruster_faults(f);
+  MockThrusterBus bus(world, f);
+  ThrusterTelemetry tel = fly(bus, 0.7, 50);
+  EXPECT_GT(world.thrusters().thrust_n(3), 10.0);
+  EXPECT_EQ(tel.fault_flags[channel(3)], 0);
+  tel = fly(bus, 0.7, 150);
+  EXPECT_EQ(world.thrusters().thrust_n(3), 0.0);
+  EXPECT_EQ(tel.speed_rpm[channel(3)], 0.0);
+  EXPECT_NE(tel.fault_flags[channel(3)], 0);
+  EXPECT_GT(world.thrusters().thrust_n(2), 10.0);  // the others fly on
+  EXPECT_EQ(tel.fault_flags[channel(2)], 0);
+}
+
+TEST_F(FailingThruster, WeakThrusterGivesAFractionOfItsThrustAndLowRpmWithoutAFlag) {
+  FaultInjection f;
+  f.thruster_weak_index = 5;
+  f.thruster_weak_at_s = 0.1;
+  f.thruster_weak_fraction = 0.3;
+  world.set_thruster_faults(f);
+  MockThrusterBus bus(world, f);
+  const ThrusterTelemetry tel = fly(bus, 0.7, 150);
+  EXPECT_NEAR(world.thrusters().thrust_n(5), 0.3 * world.thrusters().thrust_n(4), 1e-9);
+  EXPECT_NEAR(tel.speed_rpm[channel(5)], std::sqrt(0.3) * tel.speed_rpm[channel(4)], 1e-6);
+  EXPECT_EQ(tel.fault_flags[channel(5)], 0);
+}
+
+TEST_F(FailingThruster, StuckThrusterHoldsItsThrustWhateverIsCommanded) {
+  FaultInjection f;
+  f.thruster_stuck_index = 1;
+  f.thruster_stuck_at_s = 0.1;
+  world.set_thruster_faults(f);
+  MockThrusterBus bus(world, f);
+  fly(bus, 0.7, 100);
+  const double held_n = world.thrusters().thrust_n(1);
+  ASSERT_GT(held_n, 10.0);
+  const ThrusterTelemetry tel = fly(bus, -0.5, 300);
+  EXPECT_EQ(world.thrusters().thrust_n(1), held_n);
+  EXPECT_GT(tel.speed_rpm[channel(1)], 1000.0);  // still forward
+  EXPECT_LT(tel.speed_rpm[channel(0)], -1000.0);
+}
+
+TEST_F(FailingThruster, AFailureOnAThrusterTheLayoutLacksIsRejected) {
+  FaultInjection f;
+  f.thruster_dead_index = 8;
+  f.thruster_dead_at_s = 1.0;
+  EXPECT_THROW(world.set_thruster_faults(f), std::invalid_argument);
+  f.thruster_dead_at_s = -1.0;  // never: the index does not matter
+  EXPECT_NO_THROW(world.set_thruster_faults(f));
 }
 
 }  // namespace

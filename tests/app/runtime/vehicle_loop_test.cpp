@@ -1,0 +1,101 @@
+// VehicleLoop against the mock HAL with failing thrusters: a dead one is found from the bus's
+// telemetry, removed from the allocation (logged, no allocation on the tick) and the mission goes
+// on; losing x, y, z or yaw trips the failsafe as a thruster fault.
+#include "app/runtime/vehicle_loop.hpp"
+
+#include <gtest/gtest.h>
+
+#include <string>
+#include <vector>
+
+#include "app/runtime/allocation_counter.hpp"
+#include "app/runtime/vehicle.hpp"
+#include "hal/mock/trial_generator.hpp"
+
+namespace rovctl::app {
+namespace {
+
+struct FailingThrusters : ::testing::Test {
+  AppConfig config = load_app_config(default_config_path());
+  hal::StereoRig rig = load_rig(config);
+
+  std::unique_ptr<Vehicle> open_vehicle() {
+    const hal::mock::TrialConditions trial =
+        hal::mock::TrialGenerator(config.sim, config.vehicle, rig, config.marker).make(0, 1);
+    VehicleOptions o;
+    o.helper_threads = false;
+    auto v =
+        std::make_unique<Vehicle>(config, rig, make_trial_backends(config, rig, trial, false), o);
+    std::string error;
+    EXPECT_TRUE(v->open(error)) << error;
+    EXPECT_TRUE(v->arm(error)) << error;
+    return v;
+  }
+  // Runs `ticks` ticks; returns the heap allocations made by those after the first `warm_up`.
+  std::uint64_t run(Vehicle& v, int ticks, int warm_up, std::vector<LoopEvent>& events) {
+    std::uint64_t allocations = 0;
+    int k = 0;
+    v.scheduler().run(
+        [&](const TickInfo& info) {
+          AllocationProbe probe;
+          const bool more = v.loop().tick(info);
+          if (k++ >= warm_up) allocations += probe.allocations();
+          LoopEvent e;
+          while (v.loop().pop_event(e)) {
+            if (e.thruster >= 0 || e.failsafe) events.push_back(e);
+          }
+          return more;
+        },
+        static_cast<std::uint64_t>(ticks));
+    return allocations;
+  }
+};
+
+TEST_F(FailingThrusters, ADeadThrusterIsRemovedWithinTwoTicksAndTheMissionGoesOn) {
+  config.sim.faults.thruster_dead_index = 2;
+  config.sim.faults.thruster_dead_at_s = 0.5;  // tick 16 on the 33 ms grid
+  auto v = open_vehicle();
+  std::vector<LoopEvent> events;
+  const std::uint64_t allocations = run(*v, 90, 10, events);
+  EXPECT_EQ(allocations, 0u) << "the failure and the re-allocation are on the tick";
+  ASSERT_EQ(events.size(), 1u);
+  const LoopEvent& e = events.front();
+  EXPECT_EQ(e.thruster, 2);
+  EXPECT_EQ(e.thruster_failure, control::ThrusterFailure::fault_flag);
+  EXPECT_GE(e.tick, 16u);
+  EXPECT_LE(e.tick, 18u);
+  EXPECT_EQ(e.thrusters_left, 7u);
+  EXPECT_TRUE(e.servo_axes_controllable);
+  const std::string line = format_event(e);
+  EXPECT_NE(line.find("THRUSTER 2"), std::string::npos) << line;
+  EXPECT_NE(line.find("ESC fault flag"), std::string::npos) << line;
+  EXPECT_FALSE(v->loop().failsafe().tripped());
+  EXPECT_FALSE(v->loop().allocator().active(2));
+  EXPECT_EQ(v->loop().last_command().thrust_fraction[2], 0.0);
+  EXPECT_GT(v->loop().recognised_ticks(), 60u);
+}
+
+TEST_F(FailingThrusters, LosingTwoVectoredThrustersTripsAThrusterFault) {
+  // One dead with its flag, one giving nothing without a flag (found by its rpm): the two front
+  // horizontal thrusters, after which x, y and yaw cannot all be produced.
+  config.sim.faults.thruster_dead_index = 0;
+  config.sim.faults.thruster_dead_at_s = 0.4;
+  config.sim.faults.thruster_weak_index = 1;
+  config.sim.faults.thruster_weak_at_s = 0.4;
+  config.sim.faults.thruster_weak_fraction = 0.0;
+  auto v = open_vehicle();
+  std::vector<LoopEvent> events;
+  run(*v, 90, 0, events);
+  ASSERT_TRUE(v->loop().failsafe().tripped());
+  EXPECT_EQ(v->loop().failsafe().cause(), control::FailsafeCause::thruster_fault);
+  ASSERT_GE(events.size(), 3u);
+  EXPECT_EQ(events[0].thruster, 0);
+  EXPECT_TRUE(events[0].servo_axes_controllable);
+  EXPECT_EQ(events[1].thruster, 1);
+  EXPECT_FALSE(events[1].servo_axes_controllable);
+  EXPECT_TRUE(events[2].failsafe);
+  EXPECT_EQ(events[2].cause, control::FailsafeCause::thruster_fault);
+}
+
+}  // namespace
+}  // namespace rovctl::app
