@@ -16,6 +16,7 @@
 #include "app/runtime/vehicle_backends.hpp"
 #include "app/tools/charge_fault.hpp"
 #include "app/tools/docking_trial.hpp"
+#include "app/tools/injected_fault.hpp"
 #include "app/tools/output_folder.hpp"
 #include "app/tools/sim_report.hpp"
 #include "app/view/operator_view.hpp"
@@ -29,11 +30,12 @@ constexpr double kRechargeMaxTimeS = 400.0;
 }  // namespace
 
 int command_sim(const Words& words) {
-  const CliArgs args = CliArgs::parse(
-      "sim", words,
-      {"--config", "--trials", "--seed", "--out", "--jobs", "--max-time", "--plots", "--scenario",
-       "--mission", "--serve", "--token", "--serve-linger", "--charge-fault", "--first-trial"},
-      {"--realtime", "--json", "--verbose", "--hold"});
+  const CliArgs args =
+      CliArgs::parse("sim", words,
+                     {"--config", "--trials", "--seed", "--out", "--jobs", "--max-time", "--plots",
+                      "--scenario", "--mission", "--serve", "--token", "--serve-linger",
+                      "--charge-fault", "--first-trial", "--fault"},
+                     {"--realtime", "--json", "--verbose", "--hold"});
   const std::string config_file =
       args.has("--config") ? args.get("--config") : default_config_path();
   const int trials = static_cast<int>(args.get_int("--trials", 1, 1, 100000));
@@ -87,6 +89,15 @@ int command_sim(const Words& words) {
           "rovctl sim: --charge-fault needs the recharging mission (--mission recharge)");
     }
     apply_charge_fault(*fault, config, options);
+  }
+  for (const std::string& spec : args.all("--fault")) {
+    const InjectedFault* fault = nullptr;
+    double at_s = 0.0;
+    std::string error;
+    if (!parse_fault_spec(spec, 0.0, fault, at_s, error)) {
+      throw UsageError("rovctl sim: --fault: " + error);
+    }
+    apply_injected_fault(*fault, at_s, config);
   }
   if (args.has("--scenario")) {
     // Overrides sim.scenario, checked here so that a typo is a usage error before any trial.
