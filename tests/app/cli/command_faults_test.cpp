@@ -9,14 +9,14 @@
 
 namespace {
 
-struct Run {
+struct CliRun {
   int code = -1;
   std::string out;
 };
 
-Run rovctl(const std::string& args) {
+CliRun rovctl(const std::string& args) {
   const std::string command = std::string(ROVCTL_BINARY) + " " + args + " 2>/dev/null";
-  Run r;
+  CliRun r;
   FILE* pipe = popen(command.c_str(), "r");
   if (pipe == nullptr) return r;
   std::array<char, 4096> buffer{};
@@ -28,25 +28,25 @@ Run rovctl(const std::string& args) {
 
 // The JSON row of `fault` (the writer emits one object per fault, fields in a fixed order).
 std::string row(const std::string& json, const std::string& fault) {
-  const auto at = json.find("\"fault\":\"" + fault + "\"");
+  const auto at = json.find("\"fault\": \"" + fault + "\"");
   if (at == std::string::npos) return "";
   return json.substr(at, json.find('}', at) - at);
 }
 
 TEST(CommandFaults, SubsetIsDetectedSafeLoggedAndTransientRecovers) {
-  const Run r = rovctl("faults --json --only sensor_nan,frozen_frames --jobs 2");
+  const CliRun r = rovctl("faults --json --only sensor_nan,frozen_frames --jobs 2");
   ASSERT_EQ(r.code, 0) << r.out;
   const std::string nan = row(r.out, "sensor_nan");
   ASSERT_FALSE(nan.empty()) << r.out;
-  EXPECT_NE(nan.find("\"cause\":\"sensor_nan\""), std::string::npos) << nan;
-  EXPECT_NE(nan.find("\"detected\":1"), std::string::npos) << nan;
-  EXPECT_NE(nan.find("\"logged\":1"), std::string::npos) << nan;
-  EXPECT_NE(nan.find("\"ticks_to_safe_max\":1"), std::string::npos) << nan;
+  EXPECT_NE(nan.find("\"cause\": \"sensor_nan\""), std::string::npos) << nan;
+  EXPECT_NE(nan.find("\"detected\": 1"), std::string::npos) << nan;
+  EXPECT_NE(nan.find("\"logged\": 1"), std::string::npos) << nan;
+  EXPECT_NE(nan.find("\"ticks_to_safe_max\": 1"), std::string::npos) << nan;
   const std::string frozen = row(r.out, "frozen_frames");
   ASSERT_FALSE(frozen.empty()) << r.out;
-  EXPECT_NE(frozen.find("\"detected\":1"), std::string::npos) << frozen;
-  EXPECT_NE(frozen.find("\"recovered\":1"), std::string::npos) << frozen;
-  EXPECT_NE(frozen.find("\"docked\":1"), std::string::npos) << frozen;
+  EXPECT_NE(frozen.find("\"detected\": 1"), std::string::npos) << frozen;
+  EXPECT_NE(frozen.find("\"recovered\": 1"), std::string::npos) << frozen;
+  EXPECT_NE(frozen.find("\"docked\": 1"), std::string::npos) << frozen;
   EXPECT_EQ(r.out.find("camera_lost"), std::string::npos) << "only the subset runs";
 }
 
