@@ -56,16 +56,40 @@ void describe(hal::ParamVisitor& v, AllocationParams& p) {
 
 void describe(hal::ParamVisitor& v, FailsafeParams& p) {
   v.param("camera_timeout_ticks", p.camera_timeout_ticks,
-          {"ticks", 1, 1000, "consecutive camera timeouts before the safe state (lost: at once)"});
+          {"ticks", 0, 1000, "consecutive camera timeouts tolerated (vision lost beyond)"});
   v.param("bus_degraded_ticks", p.bus_degraded_ticks,
-          {"ticks", 1, 1000, "consecutive degraded bus writes before the safe state"});
+          {"ticks", 1, 1000, "consecutive degraded bus writes tolerated (bus slow beyond)"});
   v.param("max_mission_time_s", p.max_mission_time_s,
-          {"s", 0.0, 86400.0, "mission time after which the vehicle is made safe (0 = none)"});
-  v.param("action", p.action, "safe state: disarm the bus, or stay armed at neutral thrust",
+          {"s", 1.0, 86400.0, "mission time (CHARGING not counted) after which it is made safe"});
+  v.param("action", p.action, "safe state of the causes whose policy action is 'default'",
           {"disarm", "neutral"});
   v.param(
       "backout_s", p.backout_s,
       {"s", 0.0, 60.0, "a trip in the socket: back out along the docking axis this long first"});
+  v.param("frozen_ticks", p.frozen_ticks,
+          {"ticks", 1, 1000, "identical images this many ticks in a row: vision frozen"});
+  v.param("stale_ms", p.stale_ms, {"ms", 1.0, 10000.0, "the newest frame older: vision stale"});
+  v.param("stereo_skew_ms", p.stereo_skew_ms,
+          {"ms", 0.0, 1000.0, "left and right captured further apart: stereo skew"});
+  v.param("dead_range_levels", p.dead_range_levels,
+          {"levels", 0, 255, "an image spanning no more grey levels is dead (black, covered)"});
+  v.param("sensor_lost_ticks", p.sensor_lost_ticks,
+          {"ticks", 1, 1000, "the sensors silent this many ticks in a row: sensors lost"});
+  v.param("min_depth_m", p.min_depth_m,
+          {"m", -100.0, 0.0, "shallowest plausible depth reading (above the surface: negative)"});
+  v.param("max_depth_m", p.max_depth_m, {"m", 1.0, 11000.0, "deepest plausible depth reading"});
+  v.param("max_rate_radps", p.max_rate_radps,
+          {"rad/s", 0.1, 100.0, "fastest plausible gyro reading on any axis"});
+  v.param("attitude_limit_rad", p.attitude_limit_rad,
+          {"rad", 0.05, 3.14, "roll or pitch beyond this: attitude limit"});
+  v.param("overrun_ticks", p.overrun_ticks,
+          {"ticks", 1, 1000, "consecutive ticks past the next release: cpu overrun"});
+  v.param("recover_ticks", p.recover_ticks,
+          {"ticks", 1, 10000, "an auto cause gone this many ticks in a row: recovered"});
+  v.param("recover_within_s", p.recover_within_s,
+          {"s", 0.1, 86400.0, "an auto trip not recovered within this latches"});
+  v.section("policy", "per cause: the safe action and whether the trip recovers or latches",
+            [&p](hal::ParamVisitor& s) { describe(s, p.policy); });
 }
 
 void describe(hal::ParamVisitor& v, AttitudeParams& p) {
@@ -170,7 +194,7 @@ void describe(hal::ParamVisitor& v, MissionParams& p) {
   v.param("search_yaw_moment_nm", p.search_yaw_moment_nm,
           {"N m", -20.0, 20.0, "yaw moment of the SEARCH scan (sign: direction)"});
   v.param("search_timeout_s", p.search_timeout_s,
-          {"s", 0.0, 86400.0, "SEARCH time after which the mission fails (0 = none)"});
+          {"s", 1.0, 86400.0, "SEARCH time after which the failsafe trips (search_time)"});
   v.param("standoff_m", p.standoff_m,
           {"m", 0.05, 5.0, "stand-off distance back from docked along the docking axis"});
   v.param("approach_lateral_m", p.approach_lateral_m,

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "control/failsafe_policy.hpp"
 #include "hal/primitives/parameters.hpp"
 
 namespace rovctl::control {
@@ -67,19 +68,44 @@ struct AllocationParams {
 void describe(hal::ParamVisitor& v, AllocationParams& p);
 
 struct FailsafeParams {
-  // Consecutive camera timeouts tolerated (a lost device trips at once).
-  int camera_timeout_ticks = 5;
-  // Consecutive degraded bus writes tolerated (a faulted bus trips at once).
+  // Consecutive camera timeouts tolerated (vision lost; a lost device trips at once). One: a
+  // single dropped frame passes, two in a row (66 ms without a picture) trip.
+  int camera_timeout_ticks = 1;
+  // Consecutive degraded bus writes tolerated (bus slow; a faulted bus trips at once).
   int bus_degraded_ticks = 10;
-  // Longest a mission may run before the vehicle is made safe; 0 = no limit.
-  double max_mission_time_s = 0.0;
+  // Longest a mission may run, CHARGING not counted, before the vehicle is made safe. The sim's
+  // dockings take 15-40 s and give up by 150 s; a recharge's undock adds 30 s.
+  double max_mission_time_s = 900.0;
   // "disarm": disarm the bus (ESCs neutral, vehicle floats up); "neutral": armed, zero thrust.
+  // The action of every cause whose policy says "default".
   std::string action = "disarm";
   // A trip with the probe in the socket (charging, re-seating, undocking) whose thrusters still
   // obey backs out along the docking axis this long first (mission.recharge.undock_push_n, open
   // loop): a disarmed vehicle would hang on its probe in the current, pivot about it and grind the
   // socket. At the push's ~0.2 m/s, 4 s clears the 0.5 m stand-off. 0: go safe at once.
   double backout_s = 4.0;
+  // Vision: identical images (a hash of a subsample) this many ticks in a row; the newest frame
+  // older than stale_ms (the mock camera's latency is 40 ms, a USB camera's 50-100 ms); left and
+  // right captured further apart than stereo_skew_ms (a third of a frame at 30 fps); an image
+  // whose subsample spans no more than dead_range_levels grey levels (black or covered).
+  int frozen_ticks = 2;
+  double stale_ms = 250.0;
+  double stereo_skew_ms = 10.0;
+  int dead_range_levels = 3;
+  // Sensors: lost for this many ticks in a row; implausible outside these bounds; the attitude
+  // limit on roll and pitch (the cameras lose the marker well before 35 deg).
+  int sensor_lost_ticks = 2;
+  double min_depth_m = -5.0;
+  double max_depth_m = 500.0;
+  double max_rate_radps = 10.0;
+  double attitude_limit_rad = 0.6;
+  // Consecutive overrun ticks (the tick ran past the next release).
+  int overrun_ticks = 2;
+  // Recovery of an "auto" cause: gone for recover_ticks in a row; a trip that has not recovered
+  // within recover_within_s latches.
+  int recover_ticks = 10;
+  double recover_within_s = 30.0;
+  FailsafePolicy policy;
 };
 
 void describe(hal::ParamVisitor& v, FailsafeParams& p);
@@ -190,7 +216,7 @@ struct MissionParams {
   int lost_frames = 45;  // consecutive unrecognised frames that abort APPROACH/ALIGN/DOCK
   // SEARCH: constant yaw moment (sets a slow scan against the yaw drag); sign = direction.
   double search_yaw_moment_nm = 0.6;
-  double search_timeout_s = 0.0;  // 0 = search forever
+  double search_timeout_s = 120.0;  // then the failsafe (search_time)
   // APPROACH: servo to the stand-off pose, this far back from docked along the docking axis.
   double standoff_m = 0.5;
   double approach_lateral_m = 0.05;  // enter ALIGN when within these

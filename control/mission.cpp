@@ -148,9 +148,10 @@ void Mission::enter(MissionState to, std::chrono::nanoseconds now, const char* r
   }
 }
 
-void Mission::restart(std::chrono::nanoseconds now) {
+void Mission::restart(std::chrono::nanoseconds now, const char* reason) {
   aborts_ = 0;
-  enter(MissionState::search, now, "restart");
+  search_timed_out_ = false;
+  enter(MissionState::search, now, reason);
   started_ = true;
   servo_was_active_ = false;
   have_last_ = false;
@@ -207,6 +208,7 @@ MissionOutput Mission::update(const MissionInput& in) {
       if (seen_frames_ >= p_.acquire_frames) {
         enter(MissionState::approach, in.now, "marker recognised");
       } else if (p_.search_timeout_s > 0.0 && t_state > p_.search_timeout_s) {
+        search_timed_out_ = true;
         enter(MissionState::failed, in.now, "search timed out");
       }
       break;

@@ -112,8 +112,9 @@ class Mission {
   // One tick. `in.now` must not go backwards. No allocation.
   MissionOutput update(const MissionInput& in);
 
-  // Back to SEARCH with no aborts counted (a new mission); logged.
-  void restart(std::chrono::nanoseconds now);
+  // Back to SEARCH with no aborts counted (a new mission, or one resumed after a failsafe);
+  // logged with `reason` (a static string).
+  void restart(std::chrono::nanoseconds now, const char* reason = "restart");
 
   // The probe is in or at the socket: CHARGING, a re-seat's DOCK, UNDOCK.
   bool at_station() const;
@@ -129,6 +130,8 @@ class Mission {
   // a recharge given up after its re-seats.
   bool finished() const;
   int aborts() const { return aborts_; }
+  // FAILED because SEARCH ran out of time (the failsafe's search_time rather than mission_failed).
+  bool search_timed_out() const { return search_timed_out_; }
   int reseats() const { return reseats_; }
   bool charge_complete() const { return charge_complete_; }
   const Eigen::Isometry3d& standoff_T_cl_marker() const { return T_standoff_; }
@@ -182,6 +185,7 @@ class Mission {
   bool charge_complete_ = false;
   bool abort_after_undock_ = false;  // re-seats exhausted: UNDOCK ends in the final ABORT
   bool final_abort_ = false;
+  bool search_timed_out_ = false;
   bool backed_off_ = false;  // ABORT's back-off time is over
   bool departed_hold_ = false;
   bool keep_axial_trim_ = false;     // the next output asks to keep the axial trim

@@ -31,6 +31,7 @@ CliArgs CliArgs::parse(const std::string& command, const std::vector<std::string
         value = words[++i];
       }
       args.values_[word] = value;
+      args.repeated_[word].push_back(value);
     } else {
       throw UsageError("rovctl " + command + ": unknown option '" + word + "' (see rovctl help)");
     }
@@ -43,6 +44,11 @@ bool CliArgs::has(const std::string& name) const { return values_.count(name) !=
 std::string CliArgs::get(const std::string& name, const std::string& fallback) const {
   const auto it = values_.find(name);
   return it == values_.end() ? fallback : it->second;
+}
+
+std::vector<std::string> CliArgs::all(const std::string& name) const {
+  const auto it = repeated_.find(name);
+  return it == repeated_.end() ? std::vector<std::string>{} : it->second;
 }
 
 long CliArgs::get_int(const std::string& name, long fallback, long min, long max) const {

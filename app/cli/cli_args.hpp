@@ -15,13 +15,16 @@ class CliArgs {
                        const std::set<std::string>& options, const std::set<std::string>& flags);
 
   bool has(const std::string& name) const;
+  // The last value given (get), or every value in order (all: a repeatable option).
   std::string get(const std::string& name, const std::string& fallback = "") const;
+  std::vector<std::string> all(const std::string& name) const;
   long get_int(const std::string& name, long fallback, long min, long max) const;
   double get_double(const std::string& name, double fallback, double min, double max) const;
 
  private:
   std::string command_;
   std::map<std::string, std::string> values_;
+  std::map<std::string, std::vector<std::string>> repeated_;
 };
 
 }  // namespace rovctl::app

@@ -16,6 +16,7 @@
 #include "app/runtime/vehicle_backends.hpp"
 #include "app/tools/charge_fault.hpp"
 #include "app/tools/docking_trial.hpp"
+#include "app/tools/injected_fault.hpp"
 #include "app/tools/output_folder.hpp"
 #include "app/tools/sim_report.hpp"
 #include "app/view/operator_view.hpp"
@@ -33,7 +34,7 @@ int command_sim(const Words& words) {
       CliArgs::parse("sim", words,
                      {"--config", "--trials", "--seed", "--out", "--jobs", "--max-time", "--plots",
                       "--scenario", "--mission", "--serve", "--token", "--serve-linger",
-                      "--charge-fault", "--first-trial", "--thruster-fault"},
+                      "--charge-fault", "--first-trial", "--thruster-fault", "--fault"},
                      {"--realtime", "--json", "--verbose", "--hold"});
   const std::string config_file =
       args.has("--config") ? args.get("--config") : default_config_path();
@@ -97,6 +98,15 @@ int command_sim(const Words& words) {
                        "'");
     }
     options.thruster_fault = name;
+  }
+  for (const std::string& spec : args.all("--fault")) {
+    const InjectedFault* fault = nullptr;
+    double at_s = 0.0;
+    std::string error;
+    if (!parse_fault_spec(spec, 0.0, fault, at_s, error)) {
+      throw UsageError("rovctl sim: --fault: " + error);
+    }
+    apply_injected_fault(*fault, at_s, config);
   }
   if (args.has("--scenario")) {
     // Overrides sim.scenario, checked here so that a typo is a usage error before any trial.

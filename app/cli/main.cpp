@@ -16,12 +16,18 @@ constexpr const char* kUsage = R"(usage: rovctl <command> [options]
 commands:
   sim        [--config FILE] [--trials N] [--seed S] [--realtime] [--json] [--out DIR]
              [--mission dock|recharge] [--scenario NAME] [--jobs N] [--max-time S]
-             [--first-trial I] [--charge-fault FAULT]
+             [--first-trial I] [--charge-fault FAULT] [--fault NAME[@T_S]]...
              [--thruster-fault dead|weak|stuck]
              closed-loop docking (or dock, charge, undock: --mission recharge) on the mock
              HAL; NAME: clear, turbid, side_light, bubbles, occluders, noisy, exposure;
              FAULT (recharge, injected mid-charge): none, knock, knocks, surge, charger,
-             operator, camera
+             operator, camera; --fault (repeatable) injects NAME at T_S (default 0):
+             camera_lost, camera_drop, frozen_frames, stale_frames, stamp_skew,
+             camera_black, bus_timeout, sensor_lost, sensor_nan, sensor_implausible,
+             tilt, cpu_stall, mission_time, search_time
+  faults     [--config FILE] [--json] [--trials N] [--only A,B] [--at T_S] [--jobs N]
+             the fault matrix: each fault above injected mid-approach (transient
+             ones N times): detected, ticks to safe, logged, recovered, docked
   sim        --serve HOST:PORT [--token T] [--hold] [--serve-linger S] ...
              the same, in real time, with the live operator view in a browser
   view       --out DIR [--listen HOST:PORT] [--trial N] [--speed X]
@@ -68,6 +74,7 @@ int main(int argc, char** argv) {
     if (command == "study") return command_study(words);
     if (command == "params") return command_params(words);
     if (command == "view") return command_view(words);
+    if (command == "faults") return command_faults(words);
     std::cerr << "rovctl: unknown command '" << command << "'\n" << kUsage;
     return kExitUsage;
   } catch (const UsageError& e) {

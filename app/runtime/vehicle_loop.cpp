@@ -32,9 +32,17 @@ std::string format_event(const LoopEvent& e) {
                   t, e.thruster, e.thruster_channel, static_cast<unsigned long long>(e.tick),
                   control::to_string(e.thruster_failure), e.thrusters_left,
                   e.servo_axes_controllable ? "controllable" : "NOT controllable");
+  } else if (e.failsafe && e.failsafe_kind == control::FailsafeEventKind::recovered) {
+    std::snprintf(line, sizeof(line), "%9.3f s  FAILSAFE %s recovered (tick %llu)", t,
+                  control::to_string(e.cause), static_cast<unsigned long long>(e.tick));
+  } else if (e.failsafe && e.failsafe_kind == control::FailsafeEventKind::latched) {
+    std::snprintf(line, sizeof(line), "%9.3f s  FAILSAFE %s latched -> %s (tick %llu)", t,
+                  control::to_string(e.cause), control::to_string(e.action),
+                  static_cast<unsigned long long>(e.tick));
   } else if (e.failsafe) {
-    std::snprintf(line, sizeof(line), "%9.3f s  FAILSAFE %s -> %s", t, control::to_string(e.cause),
-                  control::to_string(e.action));
+    std::snprintf(line, sizeof(line), "%9.3f s  FAILSAFE %s -> %s (tick %llu)", t,
+                  control::to_string(e.cause), control::to_string(e.action),
+                  static_cast<unsigned long long>(e.tick));
   } else {
     std::snprintf(line, sizeof(line), "%9.3f s  mission %s -> %s (%s, aborts %d)", t,
                   control::to_string(e.from), control::to_string(e.to), e.reason, e.aborts);
@@ -60,7 +68,8 @@ VehicleLoop::VehicleLoop(const AppConfig& config, const hal::StereoRig& rig,
                hal::docked_T_cl_marker(config.vehicle.T_body_cl(), config.vehicle.probe_tip_body_m,
                                        config.station),
                config.vehicle.probe_tip_body_m),
-      failsafe_(config.control.failsafe) {
+      failsafe_(config.control.failsafe),
+      frame_monitor_(config.control.failsafe.dead_range_levels) {
   // Start-up allocations: the frame buffers at the calibrated size, the neutral command.
   frame_.left_bgr.create(rig.left.height_px, rig.left.width_px, CV_8UC3);
   frame_.right_bgr.create(rig.right.height_px, rig.right.width_px, CV_8UC3);
@@ -126,6 +135,7 @@ bool VehicleLoop::tick(const TickInfo& info) {
     grab = camera_.grab(frame_);
   }
   bool have_images = grab == hal::GrabStatus::ok;
+  if (have_images) frame_monitor_.update(frame_, now);
   if (have_images) {
     auto timer = scheduler_.stage(Stage::segment);
     // An image the calibration does not describe is a camera fault, not an exception.
@@ -186,15 +196,19 @@ bool VehicleLoop::tick(const TickInfo& info) {
         e.aborts = mission_.aborts();
         queue(e);
       }
-      if (operator_link_->take_start() && (operator_hold_ || mission_.finished())) {
+      if (operator_link_->take_start() &&
+          (operator_hold_ || mission_.finished() || failsafe_.tripped())) {
+        // START re-arms after any failsafe, latched or not: the operator has seen the cause.
         operator_hold_ = false;
+        failsafe_.reset(now);
         mission_.restart(now);  // logged by the mission as a restart
         servo_.reset();
         last_servo_time_ = std::chrono::nanoseconds{-1};
       }
     }
-    if (operator_hold_) {
-      // The mission is frozen where the operator stopped it; nothing is thrust.
+    const bool safe_hold = failsafe_.tripped() && !failsafe_.backing_out();
+    if (operator_hold_ || safe_hold) {
+      // The mission is frozen where the operator or the failsafe stopped it; nothing is thrust.
       out.state = mission_.state();
       out.thrusters_enabled = false;
     } else {
@@ -244,7 +258,18 @@ bool VehicleLoop::tick(const TickInfo& info) {
     if (out.state != control::MissionState::charging) undock_requested_.store(false);
     control::FailsafeInput fs;
     fs.now = now;
+    fs.tick = ticks_;
     fs.grab = grab;
+    const FrameHealth& fh = frame_monitor_.health();
+    fs.identical_frames = fh.identical_frames;
+    fs.image_dead = fh.image_dead;
+    fs.frame_age = fh.frame_age;
+    fs.stereo_skew = fh.stereo_skew;
+    fs.sensors_fitted = sensors_ != nullptr;
+    fs.sensors_answered = have_readings;
+    fs.readings = &readings_;
+    fs.overrun = info.skipped_before > 0;
+    fs.search_timed_out = mission_.search_timed_out();
     fs.bus = bus_status_;
     fs.T_cl_marker = estimate_.T_cl_marker;
     fs.fitness = have_images ? estimate_.fitness : 0.0;
@@ -253,6 +278,15 @@ bool VehicleLoop::tick(const TickInfo& info) {
     fs.at_station = mission_.at_station();
     fs.thrusters_uncontrollable = thrusters_uncontrollable_;
     action = failsafe_.update(fs);
+    if (failsafe_.take_recovered()) {
+      // The cause has passed: the mission starts over from SEARCH (where the vehicle is now is
+      // not where the interrupted state left it), re-armed if the trip disarmed.
+      mission_.restart(now, "failsafe recovered: resuming from SEARCH");
+      out.state = mission_.state();
+      out.thrusters_enabled = false;  // from the next tick
+      servo_.reset();
+      last_servo_time_ = std::chrono::nanoseconds{-1};
+    }
     if (action == control::SafeAction::back_out && !backing_out) {
       // Tripped this tick: the mission backs out too (logged), from this tick's command on.
       mission_.failsafe_undock(now, "failsafe: backing out of the socket");
@@ -275,6 +309,13 @@ bool VehicleLoop::tick(const TickInfo& info) {
       bus_.write(neutral_);
       bus_status_ = bus_.arm(false);
       armed_ = false;
+      disarmed_by_failsafe_ = true;
+    } else if (action == control::SafeAction::none && disarmed_by_failsafe_) {
+      // Recovered (or re-armed by the operator) after a disarm: neutral, then arm again.
+      bus_status_ = bus_.write(neutral_);
+      if (bus_status_ != hal::BusStatus::fault) bus_status_ = bus_.arm(true);
+      armed_ = bus_status_ != hal::BusStatus::fault;
+      disarmed_by_failsafe_ = !armed_;
     } else {
       bus_status_ = bus_.write(command_);
     }
@@ -299,6 +340,8 @@ bool VehicleLoop::tick(const TickInfo& info) {
       e.time = fe.time;
       e.cause = fe.cause;
       e.action = fe.action;
+      e.failsafe_kind = fe.kind;
+      e.tick = fe.tick;
       queue(e);
     }
     if (telemetry_ != nullptr || operator_link_ != nullptr) {
@@ -343,8 +386,9 @@ bool VehicleLoop::tick(const TickInfo& info) {
 
   // An operator hold waits for START (or the operator's stop), even after the mission ended; a
   // failsafe ends the run once the vehicle is safe, not while it backs out of the socket.
-  const bool ended =
-      (failsafe_.tripped() && !failsafe_.backing_out()) || (mission_.finished() && !operator_hold_);
+  const bool latched = failsafe_.tripped() && !failsafe_.backing_out() &&
+                       !failsafe_.awaiting_recovery() && operator_link_ == nullptr;
+  const bool ended = latched || (mission_.finished() && !operator_hold_ && !failsafe_.tripped());
   if (!ended) {
     ended_at_ = std::chrono::nanoseconds{-1};
     return true;

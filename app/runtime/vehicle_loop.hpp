@@ -12,6 +12,7 @@
 
 #include "app/runtime/app_config.hpp"
 #include "app/runtime/cyclic_scheduler.hpp"
+#include "app/runtime/frame_monitor.hpp"
 #include "app/runtime/operator_link.hpp"
 #include "app/runtime/telemetry.hpp"
 #include "control/attitude_stabilizer.hpp"
@@ -38,6 +39,8 @@ struct LoopEvent {
   control::MissionState to = control::MissionState::search;
   control::FailsafeCause cause = control::FailsafeCause::none;
   control::SafeAction action = control::SafeAction::none;
+  control::FailsafeEventKind failsafe_kind = control::FailsafeEventKind::trip;
+  std::uint64_t tick = 0;   // the loop's tick count when it happened (failsafe events)
   const char* reason = "";  // static string
   int aborts = 0;
   // A thruster failed and was removed from the allocation (thruster >= 0: its layout index).
@@ -61,7 +64,8 @@ class VehicleLoop {
 
   // Arms the thrusters (neutral first). False with a message naming the bus on failure.
   bool arm(std::string& error);
-  // One tick; false when the mission has ended (docked and settled, failed, or failsafe tripped).
+  // One tick; false when the mission has ended (docked and settled, failed, or a failsafe
+  // latched — with an operator attached, a latched failsafe waits for START instead).
   bool tick(const TickInfo& info);
   // Neutral and disarm; safe to call more than once.
   void disarm();
@@ -110,6 +114,7 @@ class VehicleLoop {
   control::ThrusterHealth health_;
   control::Mission mission_;
   control::Failsafe failsafe_;
+  FrameMonitor frame_monitor_;
   SpscRing<LoopEvent> events_{256};
 
   hal::StereoFrame frame_;

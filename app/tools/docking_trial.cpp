@@ -107,6 +107,10 @@ TrialResult run_docking_trial(const AppConfig& config, const hal::StereoRig& rig
     LoopEvent e;
     while (loop.pop_event(e)) {
       result.events.push_back(format_event(e));
+      if (e.failsafe) {
+        result.failsafe_log.push_back(
+            {std::chrono::duration<double>(e.time).count(), e.tick, e.cause, e.failsafe_kind});
+      }
       if (!e.failsafe && e.to == control::MissionState::undock) result.charge.end_reason = e.reason;
       if (options.log_events)
         std::cerr << "trial " << conditions.index << ": " << result.events.back() << "\n";

@@ -11,6 +11,7 @@
 #include "app/runtime/app_config.hpp"
 #include "app/runtime/operator_link.hpp"
 #include "app/runtime/telemetry.hpp"
+#include "control/failsafe.hpp"
 #include "hal/mock/trial_generator.hpp"
 #include "hal/model/stereo_rig.hpp"
 
@@ -68,6 +69,14 @@ struct RechargeResult {
   std::vector<ChargeSample> samples;
 };
 
+// A failsafe event as the loop logged it (trip, back-out done, recovered, latched).
+struct FailsafeLogEntry {
+  double time_s = 0.0;
+  std::uint64_t tick = 0;
+  control::FailsafeCause cause = control::FailsafeCause::none;
+  control::FailsafeEventKind kind = control::FailsafeEventKind::trip;
+};
+
 struct TrialResult {
   hal::mock::TrialConditions conditions;
   bool docked = false;          // the simulator's verdict: captured, centred, aligned
@@ -88,6 +97,7 @@ struct TrialResult {
   double recognised_fraction = 0.0;
   double estimate_error_mm_median = -1.0;  // while recognised
   std::vector<std::string> events;
+  std::vector<FailsafeLogEntry> failsafe_log;
   std::vector<TelemetryRecord> records;  // when keep_records
   bool recharge = false;                 // mission.kind recharge
   RechargeResult charge;

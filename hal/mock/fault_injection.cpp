@@ -33,6 +33,37 @@ void describe(ParamVisitor& v, FaultInjection& f) {
           {"-", 0, 7, "the thruster that sticks at thruster_stuck_at_s"});
   v.param("thruster_stuck_at_s", f.thruster_stuck_at_s,
           {"s", -1.0, 1e6, "that thruster holds its thrust and follows no command (-1: never)"});
+  const auto timed = [&v](const char* at_key, double& at_s, const char* for_key, double& for_s,
+                          const char* what) {
+    v.param(at_key, at_s, {"s", -1.0, 1e6, what});
+    v.param(for_key, for_s, {"s", -1.0, 1e6, "how long it lasts (-1: for good)"});
+  };
+  timed("camera_drop_at_s", f.camera_drop_at_s, "camera_drop_for_s", f.camera_drop_for_s,
+        "every grab times out from this sim time (-1: never)");
+  timed("frozen_frames_at_s", f.frozen_frames_at_s, "frozen_frames_for_s", f.frozen_frames_for_s,
+        "the camera delivers the same images again from this sim time (-1: never)");
+  timed("stale_frames_at_s", f.stale_frames_at_s, "stale_frames_for_s", f.stale_frames_for_s,
+        "frames arrive stale_ms late from this sim time (-1: never)");
+  v.param("stale_ms", f.stale_ms, {"ms", 0.0, 10000.0, "the stale frames' extra age"});
+  timed("stamp_skew_at_s", f.stamp_skew_at_s, "stamp_skew_for_s", f.stamp_skew_for_s,
+        "the right image is stamped stamp_skew_ms early from this sim time (-1: never)");
+  v.param("stamp_skew_ms", f.stamp_skew_ms,
+          {"ms", 0.0, 10000.0, "the left/right stamp skew injected"});
+  timed("camera_black_at_s", f.camera_black_at_s, "camera_black_for_s", f.camera_black_for_s,
+        "the right camera's image is black from this sim time (-1: never)");
+  v.param("marker_hidden_at_s", f.marker_hidden_at_s,
+          {"s", -1.0, 1e6, "the marker is out of every picture from this sim time (-1: never)"});
+  v.param(
+      "sensor_implausible_at_s", f.sensor_implausible_at_s,
+      {"s", -1.0, 1e6, "depth reads sensor_implausible_depth_m from this sim time (-1: never)"});
+  v.param("sensor_implausible_depth_m", f.sensor_implausible_depth_m,
+          {"m", -1e6, 1e6, "the implausible depth reading injected"});
+  timed("tilt_at_s", f.tilt_at_s, "tilt_for_s", f.tilt_for_s,
+        "the attitude reads tilt_rad of extra roll from this sim time (-1: never)");
+  v.param("tilt_rad", f.tilt_rad, {"rad", 0.0, 3.14, "the extra roll injected"});
+  timed("cpu_stall_at_s", f.cpu_stall_at_s, "cpu_stall_for_s", f.cpu_stall_for_s,
+        "each grab stalls the tick cpu_stall_ms from this sim time (virtual time; -1: never)");
+  v.param("cpu_stall_ms", f.cpu_stall_ms, {"ms", 0.0, 10000.0, "the stall per tick"});
   v.param("knock_after_seated_s", f.knock_after_seated_s,
           {"s", -1.0, 1e6, "a knock out of the socket once seated this long (-1: never)"});
   v.param("knock_force_n", f.knock_force_n,

@@ -28,6 +28,35 @@ struct FaultInjection {
   double thruster_weak_fraction = 0.3;
   int thruster_stuck_index = 0;
   double thruster_stuck_at_s = -1.0;
+  // Faults of the images and readings the failsafe must catch, each from `*_at_s` for `*_for_s`
+  // (< 0: for good): a burst of grab timeouts; the same images delivered again and again (a hung
+  // driver, stamps still advancing); frames delivered stale_ms late; the right image stamped
+  // stamp_skew_ms before the left; the right camera black (dead sensor, lens covered).
+  double camera_drop_at_s = -1.0;
+  double camera_drop_for_s = 1.0;
+  double frozen_frames_at_s = -1.0;
+  double frozen_frames_for_s = 1.0;
+  double stale_frames_at_s = -1.0;
+  double stale_frames_for_s = 1.0;
+  double stale_ms = 500.0;
+  double stamp_skew_at_s = -1.0;
+  double stamp_skew_for_s = 1.0;
+  double stamp_skew_ms = 500.0;
+  double camera_black_at_s = -1.0;
+  double camera_black_for_s = -1.0;
+  // The marker out of every picture (the camera sees open water): a search that never ends.
+  double marker_hidden_at_s = -1.0;
+  // Depth reads implausibly (sensor_implausible_depth_m, flagged valid) from then on.
+  double sensor_implausible_at_s = -1.0;
+  double sensor_implausible_depth_m = -1000.0;
+  // The attitude reads tilt_rad of extra roll for tilt_for_s (a knock the vehicle rights).
+  double tilt_at_s = -1.0;
+  double tilt_for_s = 1.0;
+  double tilt_rad = 0.8;
+  // Each grab takes cpu_stall_ms of the tick's time (virtual time only): the tick overruns.
+  double cpu_stall_at_s = -1.0;
+  double cpu_stall_for_s = 1.0;
+  double cpu_stall_ms = 50.0;
 
   // The recharging mission's faults, timed by the seat rather than the clock (a trial docks after
   // 15-40 s): each comes once the probe has been seated that long (< 0: never).
@@ -51,6 +80,11 @@ struct FaultInjection {
   // Whether a fault scheduled at `at_s` (negative: never) is active at `now`.
   static bool active(double at_s, std::chrono::nanoseconds now) {
     return at_s >= 0.0 && std::chrono::duration<double>(now).count() >= at_s;
+  }
+  // Whether a fault from `at_s` lasting `for_s` (negative: for good) is active at `now`.
+  static bool active(double at_s, double for_s, std::chrono::nanoseconds now) {
+    return active(at_s, now) &&
+           (for_s < 0.0 || std::chrono::duration<double>(now).count() < at_s + for_s);
   }
 };
 

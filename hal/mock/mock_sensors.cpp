@@ -46,6 +46,9 @@ bool MockSensors::read(SensorReadings& r) {
     return true;
   }
   r.depth_m = s.position_world_m.z() + params_.depth_noise_m * normal_(rng_);
+  if (FaultInjection::active(faults_.sensor_implausible_at_s, now)) {
+    r.depth_m = faults_.sensor_implausible_depth_m;
+  }
   const double sigma = params_.attitude_noise_deg * M_PI / 180.0;
   const Eigen::Vector3d tilt(sigma * normal_(rng_), sigma * normal_(rng_), sigma * normal_(rng_));
   const double angle = tilt.norm();
@@ -53,6 +56,10 @@ bool MockSensors::read(SensorReadings& r) {
                                        ? Eigen::Quaterniond(Eigen::AngleAxisd(angle, tilt / angle))
                                        : Eigen::Quaterniond::Identity();
   r.q_world_body = (s.q_world_body * noise).normalized();
+  if (FaultInjection::active(faults_.tilt_at_s, faults_.tilt_for_s, now)) {
+    r.q_world_body = r.q_world_body * Eigen::Quaterniond(Eigen::AngleAxisd(
+                                          faults_.tilt_rad, Eigen::Vector3d::UnitX()));
+  }
   r.omega_body_radps =
       s.omega_body_radps() +
       params_.gyro_noise_radps * Eigen::Vector3d(normal_(rng_), normal_(rng_), normal_(rng_));

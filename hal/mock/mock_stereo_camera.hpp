@@ -1,7 +1,8 @@
 // MockStereoCamera: the StereoCamera of the simulation. Each grab renders both views of the
 // marker as the world stood `latency` ago (from the world's pose history), with image noise, in
 // the world's imaging scenario (sim.scenario) at that time; the images are all the estimator
-// gets. Fault injection: camera lost from a time, dropped frames.
+// gets. Fault injection: camera lost from a time, dropped frames, a burst of timeouts, frozen,
+// stale or skewed frames, a black right image, the marker out of view, a CPU stall.
 #pragma once
 
 #include <cstdint>
@@ -11,6 +12,7 @@
 #include "hal/interfaces/stereo_camera.hpp"
 #include "hal/mock/fault_injection.hpp"
 #include "hal/mock/scene_renderer.hpp"
+#include "hal/mock/sim_clock.hpp"
 #include "hal/mock/sim_params.hpp"
 #include "hal/mock/simulated_world.hpp"
 #include "hal/model/marker_model.hpp"
@@ -41,6 +43,8 @@ class MockStereoCamera final : public StereoCamera {
   const Eigen::Isometry3d& last_T_cl_marker_truth() const { return last_truth_; }
   std::chrono::nanoseconds latency() const { return latency_; }
   FaultInjection& faults() { return faults_; }
+  // The clock a CPU stall (faults.cpu_stall_*) advances while the grab "works"; none: no stalls.
+  void stall_clock(SimClock* clock) { stall_clock_ = clock; }
 
  private:
   const SimulatedWorld& world_;
@@ -53,6 +57,7 @@ class MockStereoCamera final : public StereoCamera {
   std::mt19937_64 drop_rng_;
   std::uniform_real_distribution<double> unit_{0.0, 1.0};
   bool open_ = false;
+  SimClock* stall_clock_ = nullptr;
   std::uint64_t sequence_ = 0;
   Eigen::Isometry3d last_truth_ = Eigen::Isometry3d::Identity();
 };

@@ -20,6 +20,8 @@ SimulatedHal::SimulatedHal(const SimParams& params, const VehicleGeometry& vehic
              params_.realtime ? SimClock::Mode::realtime : SimClock::Mode::virtual_time),
       camera_(world_, rig, marker, params_.camera, params_.faults, trial_.camera_seed),
       bus_(world_, params_.faults),
-      sensors_(world_, params_.sensors, params_.faults, trial_.sensor_seed) {}
+      sensors_(world_, params_.sensors, params_.faults, trial_.sensor_seed) {
+  camera_.stall_clock(&clock_);
+}
 
 }  // namespace rovctl::hal::mock

@@ -1,9 +1,12 @@
-// Failsafe: each monitor trips into the configured safe state, latches, and is logged once.
+// Failsafe: each monitor trips into the safe state its policy names, recovers or latches as the
+// policy says, and every trip, recovery and latch is logged once with its tick.
 #include "control/failsafe.hpp"
 
 #include <gtest/gtest.h>
 
+#include <functional>
 #include <limits>
+#include <vector>
 
 namespace rovctl::control {
 namespace {
@@ -49,8 +52,8 @@ TEST(Failsafe, CameraTimeoutsTripAfterTheAllowance) {
   for (int k = 0; k < 3; ++k) EXPECT_EQ(fs.update(in), SafeAction::none);
   EXPECT_EQ(fs.update(healthy(0s)), SafeAction::none);  // a good frame resets the count
   for (int k = 0; k < 3; ++k) EXPECT_EQ(fs.update(in), SafeAction::none);
-  EXPECT_EQ(fs.update(in), SafeAction::disarm);
-  EXPECT_EQ(fs.cause(), FailsafeCause::camera_lost);
+  EXPECT_EQ(fs.update(in), SafeAction::neutral);  // the default policy: neutral, recovers
+  EXPECT_EQ(fs.cause(), FailsafeCause::vision_lost);
 }
 
 TEST(Failsafe, BusFaultAndLongDegradation) {
@@ -69,8 +72,8 @@ TEST(Failsafe, BusFaultAndLongDegradation) {
     in.bus = hal::BusStatus::degraded;
     EXPECT_EQ(fs.update(in), SafeAction::none);
     EXPECT_EQ(fs.update(in), SafeAction::none);
-    EXPECT_EQ(fs.update(in), SafeAction::disarm);
-    EXPECT_EQ(fs.cause(), FailsafeCause::bus_fault);
+    EXPECT_EQ(fs.update(in), SafeAction::neutral);
+    EXPECT_EQ(fs.cause(), FailsafeCause::bus_slow);
   }
 }
 
@@ -80,7 +83,7 @@ TEST(Failsafe, NaNInTheEstimateOrTheWrench) {
     Failsafe fs(FailsafeParams{});
     FailsafeInput in = healthy(0s);
     in.T_cl_marker.translation().y() = nan;
-    EXPECT_EQ(fs.update(in), SafeAction::disarm);
+    EXPECT_EQ(fs.update(in), SafeAction::neutral);
     EXPECT_EQ(fs.cause(), FailsafeCause::estimate_not_finite);
   }
   {
@@ -204,6 +207,150 @@ TEST(Failsafe, NoBackOutAwayFromTheStationOrWithoutThrusters) {
     in.at_station = true;
     in.grab = hal::GrabStatus::device_lost;
     EXPECT_EQ(fs.update(in), SafeAction::disarm);
+  }
+}
+
+TEST(Failsafe, TransientCauseRecoversAfterRecoverTicks) {
+  FailsafeParams p;
+  p.recover_ticks = 3;
+  Failsafe fs(p);
+  FailsafeInput in = healthy(0s);
+  in.identical_frames = p.frozen_ticks;
+  in.tick = 7;
+  EXPECT_EQ(fs.update(in), SafeAction::neutral);
+  EXPECT_EQ(fs.cause(), FailsafeCause::vision_frozen);
+  EXPECT_TRUE(fs.awaiting_recovery());
+  in.now = 33ms;
+  EXPECT_EQ(fs.update(in), SafeAction::neutral);  // still frozen: no healthy tick yet
+  for (int k = 0; k < 2; ++k) {
+    FailsafeInput ok = healthy(66ms + k * 33ms);
+    EXPECT_EQ(fs.update(ok), SafeAction::neutral);
+    EXPECT_FALSE(fs.take_recovered());
+  }
+  FailsafeInput ok = healthy(200ms);
+  ok.tick = 12;
+  EXPECT_EQ(fs.update(ok), SafeAction::none);
+  EXPECT_FALSE(fs.tripped());
+  EXPECT_TRUE(fs.take_recovered());
+  EXPECT_FALSE(fs.take_recovered());  // once
+  FailsafeEvent e;
+  ASSERT_TRUE(fs.pop_event(e));
+  EXPECT_EQ(e.kind, FailsafeEventKind::trip);
+  EXPECT_EQ(e.cause, FailsafeCause::vision_frozen);
+  EXPECT_EQ(e.tick, 7u);
+  ASSERT_TRUE(fs.pop_event(e));
+  EXPECT_EQ(e.kind, FailsafeEventKind::recovered);
+  EXPECT_EQ(e.cause, FailsafeCause::vision_frozen);
+  EXPECT_EQ(e.tick, 12u);
+  EXPECT_FALSE(fs.pop_event(e));
+}
+
+TEST(Failsafe, HardwareCauseLatchesUntilReset) {
+  Failsafe fs(FailsafeParams{});
+  hal::SensorReadings r;
+  r.depth_valid = true;
+  r.depth_m = std::numeric_limits<double>::quiet_NaN();
+  FailsafeInput in = healthy(0s);
+  in.sensors_fitted = in.sensors_answered = true;
+  in.readings = &r;
+  EXPECT_EQ(fs.update(in), SafeAction::disarm);
+  EXPECT_EQ(fs.cause(), FailsafeCause::sensor_nan);
+  EXPECT_FALSE(fs.awaiting_recovery());
+  for (int k = 1; k < 100; ++k) EXPECT_EQ(fs.update(healthy(k * 33ms)), SafeAction::disarm);
+  EXPECT_FALSE(fs.take_recovered());
+  fs.reset(4s);  // the operator re-arms
+  EXPECT_EQ(fs.update(healthy(4s)), SafeAction::none);
+}
+
+TEST(Failsafe, TransientTripThatDoesNotPassLatches) {
+  FailsafeParams p;
+  p.recover_within_s = 1.0;
+  Failsafe fs(p);
+  FailsafeInput in = healthy(0s);
+  in.stereo_skew = 100ms;
+  EXPECT_EQ(fs.update(in), SafeAction::neutral);
+  EXPECT_EQ(fs.cause(), FailsafeCause::stereo_skew);
+  in.now = 1100ms;
+  fs.update(in);
+  EXPECT_FALSE(fs.awaiting_recovery());
+  for (int k = 0; k < 50; ++k) fs.update(healthy(2s + k * 33ms));
+  EXPECT_TRUE(fs.tripped());  // latched: healthy ticks no longer clear it
+  FailsafeEvent e;
+  ASSERT_TRUE(fs.pop_event(e));
+  ASSERT_TRUE(fs.pop_event(e));
+  EXPECT_EQ(e.kind, FailsafeEventKind::latched);
+}
+
+TEST(Failsafe, HardwareFaultDuringATransientTripTakesOver) {
+  Failsafe fs(FailsafeParams{});
+  FailsafeInput in = healthy(0s);
+  in.grab = hal::GrabStatus::timeout;
+  fs.update(in);
+  EXPECT_EQ(fs.update(in), SafeAction::neutral);
+  EXPECT_EQ(fs.cause(), FailsafeCause::vision_lost);
+  in.grab = hal::GrabStatus::device_lost;
+  EXPECT_EQ(fs.update(in), SafeAction::disarm);
+  EXPECT_EQ(fs.cause(), FailsafeCause::camera_lost);
+  EXPECT_FALSE(fs.awaiting_recovery());
+}
+
+TEST(Failsafe, PolicyTableChangesActionAndRecovery) {
+  FailsafeParams p;
+  p.policy.rule(FailsafeCause::sensor_lost) = {"neutral", "auto"};
+  p.policy.rule(FailsafeCause::cpu_overrun) = {"disarm", "latch"};
+  p.recover_ticks = 1;
+  {
+    Failsafe fs(p);
+    FailsafeInput in = healthy(0s);
+    in.sensors_fitted = true;                    // not answering
+    EXPECT_EQ(fs.update(in), SafeAction::none);  // one silent tick tolerated
+    EXPECT_EQ(fs.update(in), SafeAction::neutral);
+    EXPECT_EQ(fs.cause(), FailsafeCause::sensor_lost);
+    EXPECT_EQ(fs.update(healthy(1s)), SafeAction::none);  // configured to recover
+  }
+  {
+    Failsafe fs(p);
+    FailsafeInput in = healthy(0s);
+    in.overrun = true;
+    fs.update(in);
+    EXPECT_EQ(fs.update(in), SafeAction::disarm);
+    EXPECT_EQ(fs.cause(), FailsafeCause::cpu_overrun);
+    EXPECT_EQ(fs.update(healthy(1s)), SafeAction::disarm);  // configured to latch
+  }
+}
+
+TEST(Failsafe, SensorAndImageMonitors) {
+  struct Case {
+    const char* what;
+    FailsafeCause expected;
+    std::function<void(FailsafeInput&, hal::SensorReadings&)> set;
+  };
+  const std::vector<Case> cases = {
+      {"implausible depth", FailsafeCause::sensor_implausible,
+       [](FailsafeInput&, hal::SensorReadings& r) { r.depth_m = -1000.0; }},
+      {"gyro beyond the plausible", FailsafeCause::sensor_implausible,
+       [](FailsafeInput&, hal::SensorReadings& r) { r.omega_body_radps.x() = 50.0; }},
+      {"rolled 45 deg", FailsafeCause::attitude_limit,
+       [](FailsafeInput&, hal::SensorReadings& r) {
+         r.q_world_body = Eigen::AngleAxisd(0.8, Eigen::Vector3d::UnitX());
+       }},
+      {"black right image", FailsafeCause::camera_dead,
+       [](FailsafeInput& in, hal::SensorReadings&) { in.image_dead = true; }},
+      {"stale frame", FailsafeCause::vision_stale,
+       [](FailsafeInput& in, hal::SensorReadings&) { in.frame_age = 400ms; }},
+  };
+  for (const Case& c : cases) {
+    Failsafe fs(FailsafeParams{});
+    hal::SensorReadings r;
+    r.depth_valid = r.attitude_valid = true;
+    r.depth_m = 2.0;
+    FailsafeInput in = healthy(0s);
+    in.sensors_fitted = in.sensors_answered = true;
+    in.readings = &r;
+    EXPECT_EQ(fs.update(in), SafeAction::none) << c.what;
+    c.set(in, r);
+    EXPECT_NE(fs.update(in), SafeAction::none) << c.what;
+    EXPECT_EQ(fs.cause(), c.expected) << c.what;
   }
 }
 

@@ -112,7 +112,6 @@ TEST(CommandRun, ReplayAndModbusControllerHold30Hz) {
                                 "--telemetry", dir + "/telemetry.csv"});
   const double wall_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  EXPECT_EQ(code, kExitOk);
   // The scheduler's own count of skipped releases (telemetry column skipped_total): when another
   // process starves this 2-core machine the loop cannot hold its deadlines, and the rate at the
   // controller says nothing about rovctl. That is reported, not asserted.
@@ -138,6 +137,9 @@ TEST(CommandRun, ReplayAndModbusControllerHold30Hz) {
     GTEST_SKIP() << "the machine is too loaded to hold 33 ms here: " << skipped
                  << " releases skipped in " << ticks << " ticks (" << wall_s << " s)";
   }
+  // Checked once the machine is known to hold the period: a starved loop trips the failsafe's
+  // cpu overrun streak and `run` ends non-zero.
+  EXPECT_EQ(code, kExitOk);
   EXPECT_NEAR(wall_s, ticks * 0.033, 1.0);
 
   // What arrived at the controller: heartbeats (register 16) and command blocks (registers 0-7).
