@@ -40,14 +40,13 @@ struct LoopEvent {
   control::FailsafeCause cause = control::FailsafeCause::none;
   control::SafeAction action = control::SafeAction::none;
   control::FailsafeEventKind failsafe_kind = control::FailsafeEventKind::trip;
-  std::uint64_t tick = 0;   // the loop's tick count when it happened (failsafe events)
+  std::uint64_t tick = 0;   // the loop's tick count when it happened (failsafes, thrusters)
   const char* reason = "";  // static string
   int aborts = 0;
   // A thruster failed and was removed from the allocation (thruster >= 0: its layout index).
   int thruster = -1;
   int thruster_channel = -1;
   control::ThrusterFailure thruster_failure = control::ThrusterFailure::none;
-  std::uint64_t tick = 0;
   std::size_t thrusters_left = 0;
   bool servo_axes_controllable = true;
 };
