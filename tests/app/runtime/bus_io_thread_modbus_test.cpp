@@ -89,14 +89,21 @@ struct Flight {
   BusIoStats io;
 };
 
-// ~150 ticks (5 s) of a tick that only writes and reads the bus, as VehicleLoop's actuate does.
-Flight fly(int port, int ticks) {
+// The loopback peer's Modbus TCP address, answering as slave 7.
+drivers::ModbusParams peer_params(int port, int response_timeout_ms) {
   drivers::ModbusParams mp;
   mp.transport = "tcp";
   mp.host = "127.0.0.1";
   mp.port = port;
   mp.slave_id = 7;
-  mp.response_timeout_ms = 250;  // the 100 ms peer answers; a hung one does not
+  mp.response_timeout_ms = response_timeout_ms;
+  return mp;
+}
+
+// ~150 ticks (5 s) of a tick that only writes and reads the bus, as VehicleLoop's actuate does.
+Flight fly(int port, int ticks) {
+  // 250 ms: the 100 ms peer answers; a hung one does not.
+  drivers::ModbusParams mp = peer_params(port, 250);
   mp.retries = 1;
   drivers::ModbusThrusterBus bus(mp, 8);
   drivers::MonotonicClock clock;
@@ -193,12 +200,7 @@ TEST(BusIoModbusHungPeer, AStalledPeerExecutesNoStaleCommandWhenItResumes) {
   ROVCTL_REQUIRE_TOOL(test::have_pymodbus(), "/usr/bin/python3 has no usable pymodbus");
   Peer peer;
   ASSERT_TRUE(start_peer(peer, 0)) << "pymodbus peer did not start";
-  drivers::ModbusParams mp;
-  mp.transport = "tcp";
-  mp.host = "127.0.0.1";
-  mp.port = peer.port;
-  mp.slave_id = 7;
-  mp.response_timeout_ms = 100;
+  drivers::ModbusParams mp = peer_params(peer.port, 100);
   drivers::ModbusThrusterBus bus(mp, 8);
   drivers::MonotonicClock clock;  // CLOCK_MONOTONIC, as the peer's log (time.monotonic)
   const drivers::BusTimingParams timing;
@@ -261,12 +263,7 @@ TEST(BusIoModbusHungPeer, FinalDisarmIsReportedNotAcknowledged) {
   ROVCTL_REQUIRE_TOOL(test::have_pymodbus(), "/usr/bin/python3 has no usable pymodbus");
   Peer peer;
   ASSERT_TRUE(start_peer(peer, 0)) << "pymodbus peer did not start";
-  drivers::ModbusParams mp;
-  mp.transport = "tcp";
-  mp.host = "127.0.0.1";
-  mp.port = peer.port;
-  mp.slave_id = 7;
-  mp.response_timeout_ms = 100;
+  drivers::ModbusParams mp = peer_params(peer.port, 100);
   mp.retries = 0;
   drivers::ModbusThrusterBus bus(mp, 8);
   drivers::MonotonicClock clock;
