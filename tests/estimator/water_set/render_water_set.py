@@ -1029,7 +1029,8 @@ def main(argv=None):
         cam.ideal(2.0)
     os.makedirs(args.out, exist_ok=True)
 
-    jobs = [(c, i) for c in conds for i in range(args.pairs_per_condition)]
+    # Index-major, so a run stopped early covers every condition evenly.
+    jobs = [(c, i) for i in range(args.pairs_per_condition) for c in conds]
     start = time.time()
     entries = {}
 
