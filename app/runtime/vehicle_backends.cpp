@@ -71,8 +71,7 @@ VehicleBackends make_vehicle_backends(const AppConfig& config, const hal::Stereo
   if (mock_bus) {
     b.bus = &b.sim->bus();
   } else {
-    b.real_bus =
-        drivers::make_thruster_bus(config.thruster_bus, config.vehicle.thrusters.thrusters.size());
+    b.real_bus = drivers::make_thruster_bus(config.thruster_bus, config.vehicle.thrusters);
     b.bus = b.real_bus.get();
   }
   if (b.camera == nullptr || b.bus == nullptr) {

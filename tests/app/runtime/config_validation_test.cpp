@@ -124,6 +124,28 @@ TEST(ConfigValidation, TheBusIsReportedDegradedBeforeTheWatchdogStopsIt) {
   EXPECT_EQ(error_of(fine), "");
 }
 
+TEST(ConfigValidation, TheArdusubLinkAndAckTimeoutAreCheckedAtTheirLine) {
+  const TempDir t;
+  const std::string link = t.write("link.yaml", "calibration: " + kCalibration +
+                                                    "\nthruster_bus:\n  backend: ardusub\n"
+                                                    "  ardusub:\n    link: udp:0.0.0.0:14660\n");
+  EXPECT_NE(error_of(link).find(
+                link + ":5: thruster_bus.ardusub.link: 'udp:0.0.0.0:14660' has an unknown mode"),
+            std::string::npos)
+      << error_of(link);
+  const std::string ack = t.write("ack.yaml", "calibration: " + kCalibration +
+                                                  "\nthruster_bus:\n  backend: ardusub\n"
+                                                  "  ardusub:\n    ack_timeout_ms: 800\n");
+  EXPECT_EQ(error_of(ack), ack +
+                               ":5: thruster_bus.ardusub.ack_timeout_ms: must be below "
+                               "thruster_bus.timing.close_timeout_ms (the I/O thread answers the "
+                               "final disarm within it)");
+  const std::string fine = t.write("fine.yaml", "calibration: " + kCalibration +
+                                                    "\nthruster_bus:\n  backend: ardusub\n"
+                                                    "  ardusub:\n    link: udpin:0.0.0.0:14660\n");
+  EXPECT_EQ(error_of(fine), "");
+}
+
 TEST(ConfigValidation, AMarkerNeedsThreeColoursAtDistinctPlaces) {
   const TempDir t;
   auto marker = [&t](const std::string& name, const std::string& spheres) {
