@@ -252,6 +252,10 @@ void validate_app_config(AppConfig& config) {
                       ": must be below thruster_bus.timing.watchdog_ms (a slow bus is reported "
                       "before the controller stops on it)");
   }
+  if (config.sensors.backend == "ardusub" && config.thruster_bus.backend != "ardusub") {
+    throw ConfigError(config_location(config, "sensors.backend") +
+                      ": ardusub needs thruster_bus.backend ardusub (its link carries them)");
+  }
   if (config.thruster_bus.backend == "ardusub") {
     const drivers::ArdusubParams& a = config.thruster_bus.ardusub;
     drivers::mavlink::UdpEndpoint endpoint;

@@ -56,4 +56,17 @@ void describe(hal::ParamVisitor& v, ArdusubParams& p) {
            "thruster_bus.timing.close_timeout_ms"});
 }
 
+void describe(hal::ParamVisitor& v, ArdusubSensorParams& p) {
+  v.param("stream_interval_ms", p.stream_interval_ms,
+          {"ms", 10, 1000,
+           "interval requested (MAV_CMD_SET_MESSAGE_INTERVAL) for ATTITUDE_QUATERNION, "
+           "SCALED_PRESSURE2 and SYS_STATUS"});
+  v.param("stale_ms", p.stale_ms,
+          {"ms", 20, 5000, "a reading older than this is invalid (sensor failsafes then apply)"});
+  v.param("surface_pressure_hpa", p.surface_pressure_hpa,
+          {"hPa", 800.0, 1100.0, "absolute pressure at the surface, where depth is 0"});
+  v.param("water_density_kg_m3", p.water_density_kg_m3,
+          {"kg/m^3", 990.0, 1050.0, "water density for depth from pressure (997 fresh, 1025 sea)"});
+}
+
 }  // namespace rovctl::drivers

@@ -1,5 +1,5 @@
-// Settings of the ArduSub thruster bus (config section `thruster_bus.ardusub`): the MAVLink link,
-// the ids ArduSub expects, and the map from the servo's newtons to MANUAL_CONTROL's axes.
+// Settings of ArduSub as thruster bus (`thruster_bus.ardusub`: the MAVLink link, the ids ArduSub
+// expects, the map from newtons to MANUAL_CONTROL's axes) and as sensors (`sensors.ardusub`).
 #pragma once
 
 #include <cstdint>
@@ -34,10 +34,19 @@ struct ArdusubParams {
   int ack_timeout_ms = 300;        // wait for COMMAND_ACK of arm/disarm (on the I/O thread)
 };
 
+// ArduSub's sensors streamed back over the bus's link (config section `sensors.ardusub`).
+struct ArdusubSensorParams {
+  int stream_interval_ms = 50;  // MAV_CMD_SET_MESSAGE_INTERVAL for attitude, pressure, battery
+  int stale_ms = 300;           // a reading older than this is reported invalid
+  double surface_pressure_hpa = 1013.25;  // absolute pressure at the surface (depth 0)
+  double water_density_kg_m3 = 1025.0;    // sea water; 997 in fresh water
+};
+
 // ArduSub's custom_mode number of a `flight_mode` name; -1 for an unknown name.
 int ardusub_custom_mode(const std::string& flight_mode);
 
 void describe(hal::ParamVisitor& v, ArdusubAxisScale& p);
 void describe(hal::ParamVisitor& v, ArdusubParams& p);
+void describe(hal::ParamVisitor& v, ArdusubSensorParams& p);
 
 }  // namespace rovctl::drivers

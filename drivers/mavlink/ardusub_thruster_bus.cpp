@@ -111,6 +111,7 @@ void ArdusubThrusterBus::pump() {
     const mavlink::MavlinkUdpLink::Io io = link_.receive(f);
     if (io != mavlink::MavlinkUdpLink::Io::ok) break;
     if (f.header.system_id != params_.vehicle_system_id) continue;
+    if (sensors_ != nullptr) sensors_->accept(f);
     mavlink::Heartbeat hb;
     mavlink::CommandAck ack;
     if (f.header.component_id == params_.vehicle_component_id && mavlink::unpack(f, hb)) {
@@ -161,12 +162,25 @@ bool ArdusubThrusterBus::open(std::string& error) {
     close();
     return false;
   }
-  if (!send_manual_control(ArdusubAxes{})) {
-    error = name() + ": cannot send the neutral MANUAL_CONTROL";
+  if (!send_manual_control(ArdusubAxes{}) || !request_streams()) {
+    error = name() + ": cannot send the neutral MANUAL_CONTROL or the stream requests";
     close();
     return false;
   }
   return true;
+}
+
+bool ArdusubThrusterBus::request_streams() {
+  if (sensors_ == nullptr) return true;
+  // Not in ArduSub's default streams (ATTITUDE_QUATERNION) or not at the tick's pace: ask.
+  const float interval_us = 1000.0F * static_cast<float>(sensors_->params().stream_interval_ms);
+  const std::uint8_t sys = static_cast<std::uint8_t>(params_.vehicle_system_id);
+  const std::uint8_t comp = static_cast<std::uint8_t>(params_.vehicle_component_id);
+  return send(mavlink::set_message_interval(sys, comp, mavlink::AttitudeQuaternion::kId,
+                                            interval_us)) &&
+         send(mavlink::set_message_interval(sys, comp, mavlink::ScaledPressure2::kId,
+                                            interval_us)) &&
+         send(mavlink::set_message_interval(sys, comp, mavlink::SysStatus::kId, interval_us));
 }
 
 bool ArdusubThrusterBus::send_arm(bool arm, Clock::duration wait) {

@@ -1,6 +1,7 @@
 // ThrusterBus on ArduSub over MAVLink (wrench mode): the allocator's fractions leave as one
 // MANUAL_CONTROL per command from the GCS id ArduSub obeys, arming is MAV_CMD_COMPONENT_ARM_DISARM
-// with its COMMAND_ACK, and ArduSub's HEARTBEAT is the bus's health (link, armed, mode).
+// with its COMMAND_ACK, and ArduSub's HEARTBEAT is the bus's health (link, armed, mode). It owns
+// the link, so it also feeds ArduSub's sensors (ArdusubSensors) when they are attached.
 #pragma once
 
 #include <chrono>
@@ -9,6 +10,7 @@
 #include <string>
 
 #include "drivers/mavlink/ardusub_params.hpp"
+#include "drivers/mavlink/ardusub_sensors.hpp"
 #include "drivers/mavlink/ardusub_wrench_map.hpp"
 #include "drivers/mavlink/mavlink_codec.hpp"
 #include "drivers/mavlink/mavlink_messages.hpp"
@@ -52,6 +54,10 @@ class ArdusubThrusterBus final : public hal::ThrusterBus {
   void close() override;
   std::string name() const override;
 
+  // Before open(): ArduSub's telemetry goes to `sensors` (which outlives this bus) from the I/O
+  // thread that owns the socket, and open() requests its streams (SET_MESSAGE_INTERVAL).
+  void attach(ArdusubSensors& sensors) { sensors_ = &sensors; }
+
   std::uint16_t local_port() const { return link_.local_port(); }
   ArdusubFault fault() const;
   const ArdusubCounters& counters() const { return counters_; }
@@ -69,8 +75,11 @@ class ArdusubThrusterBus final : public hal::ThrusterBus {
   bool send(const Message& m);
   hal::BusStatus status();
 
+  bool request_streams();
+
   ArdusubParams params_;
   ArdusubWrenchMap map_;
+  ArdusubSensors* sensors_ = nullptr;
   mavlink::UdpEndpoint endpoint_;
   int required_mode_ = 0;
   mavlink::MavlinkUdpLink link_;

@@ -55,6 +55,7 @@ class FakeArduSub {
   std::atomic<bool> armed{false};
   std::atomic<std::uint32_t> mode{0};
   std::atomic<bool> refuse_arm{false};
+  std::atomic<bool> streaming{false};  // ATTITUDE_QUATERNION and SCALED_PRESSURE2 with each beat
 
   std::vector<Received> received() {
     std::lock_guard<std::mutex> lock(mutex_);
@@ -110,6 +111,14 @@ class FakeArduSub {
         hb.base_mode = armed ? mav::kModeFlagSafetyArmed : 0;
         hb.custom_mode = mode;
         send(hb);
+        if (streaming) {
+          mav::AttitudeQuaternion a;
+          a.q_ned_body = {0.0F, 1.0F, 0.0F, 0.0F};  // upside down about x
+          send(a);
+          mav::ScaledPressure2 p;
+          p.press_abs_hpa = 1113.25F;
+          send(p);
+        }
         next_beat = now + 20ms;
       }
       std::this_thread::sleep_for(1ms);
@@ -304,6 +313,53 @@ TEST(ArdusubThrusterBus, CloseSendsNeutralThenDisarm) {
   EXPECT_LT(last_manual, last_disarm);
   EXPECT_EQ(r[last_manual].manual.x, 0);
   EXPECT_EQ(r[last_manual].manual.z, 500);
+}
+
+class SteadyClock final : public hal::Clock {
+ public:
+  std::chrono::nanoseconds now() const override {
+    return std::chrono::steady_clock::now().time_since_epoch();
+  }
+  void sleep_until(std::chrono::nanoseconds) override {}
+};
+
+TEST(ArdusubThrusterBus, FeedsAttachedSensorsAndRequestsTheirStreams) {
+  FakeArduSub peer;
+  peer.streaming = true;
+  SteadyClock clock;
+  ArdusubSensorParams sp;
+  sp.stream_interval_ms = 40;
+  sp.stale_ms = 2000;
+  ArdusubSensors sensors(sp, clock);
+  ArdusubThrusterBus bus(params_for(peer), hal::ThrusterLayout::bluerov2_heavy());
+  bus.attach(sensors);
+  std::string error;
+  ASSERT_TRUE(bus.open(error)) << error;
+  hal::SensorReadings r;
+  const auto end = std::chrono::steady_clock::now() + 5s;
+  while (!(sensors.read(r) && r.attitude_valid && r.depth_valid) &&
+         std::chrono::steady_clock::now() < end) {
+    (void)bus.write(all_forward(0.0));  // the I/O thread's cycle drains the socket
+    std::this_thread::sleep_for(5ms);
+  }
+  ASSERT_TRUE(r.attitude_valid);
+  EXPECT_NEAR(std::abs(r.q_world_body.x()), 1.0, 1e-6);
+  ASSERT_TRUE(r.depth_valid);
+  EXPECT_NEAR(r.depth_m, 100.0 / 1025.0 / 9.80665 * 100.0, 1e-3);
+  ASSERT_TRUE(peer.wait_for([](const auto& rx) {
+    int n = 0;
+    for (const Received& m : rx)
+      n += m.is_command && m.command.command == mav::kCmdSetMessageInterval;
+    return n == 3;
+  }));
+  std::vector<std::uint32_t> requested;
+  for (const Received& m : peer.received()) {
+    if (m.is_command && m.command.command == mav::kCmdSetMessageInterval) {
+      requested.push_back(static_cast<std::uint32_t>(m.command.params[0]));
+      EXPECT_EQ(m.command.params[1], 40000.0F);
+    }
+  }
+  EXPECT_EQ(requested, (std::vector<std::uint32_t>{31, 137, 1}));
 }
 
 TEST(ArdusubThrusterBus, WriteAndReadAllocateNothing) {

@@ -57,7 +57,7 @@ std::string error_of(const std::string& config) {
 }
 
 TEST(ConfigValidation, TheShippedConfigsPassWithoutWarnings) {
-  for (const char* name : {"sim.yaml", "vehicle.yaml"}) {
+  for (const char* name : {"sim.yaml", "vehicle.yaml", "bluerov2-heavy.yaml"}) {
     const std::string file = std::string(ROVCTL_SOURCE_DIR) + "/deploy/config/" + name;
     const AppConfig c = load_app_config(file);
     EXPECT_NO_THROW(load_rig(c)) << name;
@@ -144,6 +144,14 @@ TEST(ConfigValidation, TheArdusubLinkAndAckTimeoutAreCheckedAtTheirLine) {
                                                     "\nthruster_bus:\n  backend: ardusub\n"
                                                     "  ardusub:\n    link: udpin:0.0.0.0:14660\n");
   EXPECT_EQ(error_of(fine), "");
+}
+
+TEST(ConfigValidation, ArdusubSensorsNeedTheArdusubBus) {
+  const TempDir t;
+  const std::string f =
+      t.write("s.yaml", "calibration: " + kCalibration + "\nsensors:\n  backend: ardusub\n");
+  EXPECT_EQ(error_of(f), f + ":3: sensors.backend: ardusub needs thruster_bus.backend ardusub (its "
+                             "link carries them)");
 }
 
 TEST(ConfigValidation, AMarkerNeedsThreeColoursAtDistinctPlaces) {
