@@ -80,6 +80,10 @@ void describe(hal::ParamVisitor& v, FailsafeParams& p) {
   v.param("max_depth_m", p.max_depth_m, {"m", 1.0, 11000.0, "deepest plausible depth reading"});
   v.param("max_rate_radps", p.max_rate_radps,
           {"rad/s", 0.1, 100.0, "fastest plausible gyro reading on any axis"});
+  v.param("min_soc_fraction", p.min_soc_fraction,
+          {"-", 0.0, 0.5,
+           "battery state of charge below which the failsafe trips battery_low (0: never); below "
+           "what the recharge mission docks at"});
   v.param("attitude_limit_rad", p.attitude_limit_rad,
           {"rad", 0.05, 3.14, "roll or pitch beyond this: attitude limit"});
   v.param("overrun_ticks", p.overrun_ticks,

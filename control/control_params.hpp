@@ -98,6 +98,7 @@ struct FailsafeParams {
   double min_depth_m = -5.0;
   double max_depth_m = 500.0;
   double max_rate_radps = 10.0;
+  double min_soc_fraction = 0.05;  // battery below this trips battery_low
   double attitude_limit_rad = 0.6;
   // Consecutive overrun ticks (the tick ran past the next release).
   int overrun_ticks = 2;

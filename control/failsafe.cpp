@@ -102,6 +102,10 @@ FailsafeCause Failsafe::check(const FailsafeInput& in) {
                               r.omega_body_radps.cwiseAbs().maxCoeff() > p_.max_rate_radps))) {
       return FailsafeCause::sensor_implausible;
     }
+    if (r.leak_valid && r.leak) return FailsafeCause::leak;
+    if (r.battery_valid && r.soc_fraction < p_.min_soc_fraction) {
+      return FailsafeCause::battery_low;
+    }
     if (r.attitude_valid) {
       // Roll and pitch together: the body's z axis off the world's vertical.
       const double cos_tilt = r.q_world_body.normalized().toRotationMatrix()(2, 2);

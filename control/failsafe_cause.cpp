@@ -32,6 +32,8 @@ constexpr std::array<CauseNames, kFailsafeCauseCount> kNames{{
     {"search time limit", "search_time"},
     {"cpu overrun streak", "cpu_overrun"},
     {"thruster fault", "thruster_fault"},
+    {"leak detected", "leak"},
+    {"battery low", "battery_low"},
 }};
 
 }  // namespace

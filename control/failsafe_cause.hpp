@@ -28,9 +28,11 @@ enum class FailsafeCause {
   search_time,          // SEARCH ran out of time (mission.search_timeout_s)
   cpu_overrun,          // consecutive ticks that overran their period
   thruster_fault,       // failed thrusters left x, y, z or yaw uncontrollable
+  leak,                 // water inside the hull (the sensors' leak detector)
+  battery_low,          // state of charge below control.failsafe.min_soc_fraction
 };
 inline constexpr std::size_t kFailsafeCauseCount =
-    static_cast<std::size_t>(FailsafeCause::thruster_fault) + 1;
+    static_cast<std::size_t>(FailsafeCause::battery_low) + 1;
 
 // For the logs: "camera lost".
 const char* to_string(FailsafeCause c);

@@ -24,15 +24,19 @@ void describe(hal::ParamVisitor& v, BusTimingParams& p) {
 void describe(hal::ParamVisitor& v, ThrusterBusParams& p) {
   v.param("backend", p.backend,
           "mock: simulated vehicle; modbus: thruster controller on Modbus RTU/TCP; dronecan: "
-          "ESCs on CAN (uavcan.equipment.esc.RawCommand)",
-          {"mock", "modbus", "dronecan"});
-  v.section("timing",
-            "heartbeat and command deadlines of the thruster controller (modbus, dronecan)",
-            [&p](hal::ParamVisitor& s) { describe(s, p.timing); });
+          "ESCs on CAN (uavcan.equipment.esc.RawCommand); ardusub: ArduSub over MAVLink "
+          "(MANUAL_CONTROL)",
+          {"mock", "modbus", "dronecan", "ardusub"});
+  v.section(
+      "timing",
+      "heartbeat and command deadlines of the thruster controller (modbus, dronecan, ardusub)",
+      [&p](hal::ParamVisitor& s) { describe(s, p.timing); });
   v.section("modbus", "Modbus thruster controller (backend modbus)",
             [&p](hal::ParamVisitor& s) { describe(s, p.modbus); });
   v.section("dronecan", "DroneCAN ESCs over SocketCAN (backend dronecan)",
             [&p](hal::ParamVisitor& s) { describe(s, p.dronecan); });
+  v.section("ardusub", "ArduSub autopilot over MAVLink (backend ardusub)",
+            [&p](hal::ParamVisitor& s) { describe(s, p.ardusub); });
 }
 
 }  // namespace rovctl::drivers

@@ -3,6 +3,7 @@
 
 #include <string>
 
+#include "drivers/mavlink/ardusub_params.hpp"
 #include "drivers/modbus/modbus_params.hpp"
 #include "drivers/socketcan/dronecan_params.hpp"
 #include "hal/primitives/parameters.hpp"
@@ -19,10 +20,11 @@ struct BusTimingParams {
 };
 
 struct ThrusterBusParams {
-  std::string backend = "mock";  // mock | modbus | dronecan
+  std::string backend = "mock";  // mock | modbus | dronecan | ardusub
   BusTimingParams timing;
   ModbusParams modbus;
   DronecanParams dronecan;
+  ArdusubParams ardusub;
 };
 
 void describe(hal::ParamVisitor& v, BusTimingParams& p);

@@ -1,7 +1,9 @@
 // Counts each thread's heap allocations for the allocation-free tests: interposes the malloc
 // family over glibc's exported internal names (which also catches Eigen's aligned mallocs).
-// Include it in exactly one source file of a test binary. Under AddressSanitizer, whose runtime
-// owns malloc, there are no hooks and malloc_hooks_installed() is false.
+// Include it in exactly one source file of a test binary; other files of that binary define
+// ROVCTL_MALLOC_HOOKS_ELSEWHERE before including it, to read the counter without the hooks. Under
+// AddressSanitizer, whose runtime owns malloc, there are no hooks and malloc_hooks_installed() is
+// false.
 #pragma once
 
 #include <cstddef>
@@ -28,7 +30,7 @@ constexpr bool malloc_hooks_installed() {
 }
 }  // namespace rovctl::testing
 
-#if !defined(ROVCTL_NO_MALLOC_HOOKS)
+#if !defined(ROVCTL_NO_MALLOC_HOOKS) && !defined(ROVCTL_MALLOC_HOOKS_ELSEWHERE)
 // glibc's allocator under its exported internal names; the hooks count, then forward.
 extern "C" {
 void* __libc_malloc(std::size_t size);

@@ -21,8 +21,11 @@ void describe(hal::ParamVisitor& v, AppConfig& c) {
             [&c](hal::ParamVisitor& s) { hal::describe(s, c.station); });
   v.section("camera", "stereo camera: mock (simulated), two V4L2 cameras, or a recorded dive",
             [&c](hal::ParamVisitor& s) { drivers::describe(s, c.camera); });
-  v.section("thruster_bus", "thruster bus: mock, Modbus thruster controller or DroneCAN ESCs",
+  v.section("thruster_bus",
+            "thruster bus: mock, Modbus thruster controller, DroneCAN ESCs or ArduSub (MAVLink)",
             [&c](hal::ParamVisitor& s) { drivers::describe(s, c.thruster_bus); });
+  v.section("sensors", "navigation sensors: the simulated world's, or ArduSub's over MAVLink",
+            [&c](hal::ParamVisitor& s) { drivers::describe(s, c.sensors); });
   v.section("control", "visual servo, thruster allocation and failsafes",
             [&c](hal::ParamVisitor& s) { control::describe(s, c.control); });
   v.section("mission", "docking mission: thresholds, timeouts and retries",

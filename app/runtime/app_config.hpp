@@ -12,6 +12,7 @@
 #include "app/runtime/telemetry.hpp"
 #include "control/control_params.hpp"
 #include "drivers/camera_params.hpp"
+#include "drivers/sensors_params.hpp"
 #include "drivers/thruster_bus_params.hpp"
 #include "estimator/estimator_params.hpp"
 #include "hal/mock/sim_params.hpp"
@@ -30,6 +31,7 @@ struct AppConfig {
   hal::DockingStation station;
   drivers::CameraParams camera;
   drivers::ThrusterBusParams thruster_bus;
+  drivers::SensorsParams sensors;
   estimator::EstimatorParams estimator;
   control::ControlParams control;
   control::MissionParams mission;

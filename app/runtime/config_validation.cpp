@@ -9,6 +9,7 @@
 #include "app/runtime/app_config.hpp"
 #include "app/runtime/errors.hpp"
 #include "control/control_allocation_pseudo_inverse.hpp"
+#include "drivers/mavlink/mavlink_udp_link.hpp"
 #include "estimator/stereo_calibration.hpp"
 
 namespace rovctl::app {
@@ -250,6 +251,25 @@ void validate_app_config(AppConfig& config) {
     throw ConfigError(config_location(config, "thruster_bus.timing.degraded_ms") +
                       ": must be below thruster_bus.timing.watchdog_ms (a slow bus is reported "
                       "before the controller stops on it)");
+  }
+  if (config.sensors.backend == "ardusub" && config.thruster_bus.backend != "ardusub") {
+    throw ConfigError(config_location(config, "sensors.backend") +
+                      ": ardusub needs thruster_bus.backend ardusub (its link carries them)");
+  }
+  if (config.thruster_bus.backend == "ardusub") {
+    const drivers::ArdusubParams& a = config.thruster_bus.ardusub;
+    drivers::mavlink::UdpEndpoint endpoint;
+    std::string error;
+    // The parser's message starts with the key it is given: here the file:line: key.
+    if (!drivers::mavlink::parse_udp_endpoint(
+            a.link, config_location(config, "thruster_bus.ardusub.link"), endpoint, error)) {
+      throw ConfigError(error);
+    }
+    if (!(a.ack_timeout_ms < bus.close_timeout_ms)) {
+      throw ConfigError(config_location(config, "thruster_bus.ardusub.ack_timeout_ms") +
+                        ": must be below thruster_bus.timing.close_timeout_ms (the I/O thread "
+                        "answers the final disarm within it)");
+    }
   }
   check_thrusters(config);
   check_marker(config);

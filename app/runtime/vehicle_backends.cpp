@@ -4,6 +4,7 @@
 #include "app/runtime/config_validation.hpp"
 #include "app/runtime/errors.hpp"
 #include "drivers/camera_factory.hpp"
+#include "drivers/mavlink/ardusub_thruster_bus.hpp"
 #include "drivers/monotonic_clock.hpp"
 #include "drivers/thruster_bus_factory.hpp"
 #include "estimator/stereo_calibration.hpp"
@@ -71,9 +72,20 @@ VehicleBackends make_vehicle_backends(const AppConfig& config, const hal::Stereo
   if (mock_bus) {
     b.bus = &b.sim->bus();
   } else {
-    b.real_bus =
-        drivers::make_thruster_bus(config.thruster_bus, config.vehicle.thrusters.thrusters.size());
+    b.real_bus = drivers::make_thruster_bus(config.thruster_bus, config.vehicle.thrusters);
     b.bus = b.real_bus.get();
+  }
+  if (config.sensors.backend == "ardusub") {
+    // The bus owns the MAVLink socket, so its I/O thread feeds the sensors too.
+    auto* ardusub = dynamic_cast<drivers::ArdusubThrusterBus*>(b.real_bus.get());
+    if (ardusub == nullptr) {
+      throw ConfigError(config.config_file +
+                        ": sensors.backend ardusub needs thruster_bus.backend ardusub");
+    }
+    auto sensors = std::make_unique<drivers::ArdusubSensors>(config.sensors.ardusub, *b.clock);
+    ardusub->attach(*sensors);
+    b.sensors = sensors.get();
+    b.real_sensors = std::move(sensors);
   }
   if (b.camera == nullptr || b.bus == nullptr) {
     throw ConfigError(config.config_file + ": camera.backend '" + config.camera.backend +

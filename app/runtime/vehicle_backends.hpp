@@ -21,6 +21,7 @@ struct VehicleBackends {
   std::unique_ptr<hal::mock::SimulatedHal> sim;  // when any backend is mock
   std::unique_ptr<hal::Clock> real_clock;        // when none is
   std::unique_ptr<hal::StereoCamera> real_camera;
+  std::unique_ptr<hal::Sensors> real_sensors;  // outlives real_bus, which may feed it
   std::unique_ptr<hal::ThrusterBus> real_bus;
   hal::Clock* clock = nullptr;
   hal::StereoCamera* camera = nullptr;

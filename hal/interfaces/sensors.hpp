@@ -24,6 +24,9 @@ struct SensorReadings {
   double battery_voltage_v = 0.0;
   bool charger_valid = false;
   double charge_current_a = 0.0;
+  // Water inside the hull (e.g. ArduSub's leak detector).
+  bool leak_valid = false;
+  bool leak = false;
 };
 
 class Sensors {

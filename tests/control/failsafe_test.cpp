@@ -338,6 +338,18 @@ TEST(Failsafe, SensorAndImageMonitors) {
        [](FailsafeInput& in, hal::SensorReadings&) { in.image_dead = true; }},
       {"stale frame", FailsafeCause::vision_stale,
        [](FailsafeInput& in, hal::SensorReadings&) { in.frame_age = 400ms; }},
+      {"leak detected", FailsafeCause::leak,
+       [](FailsafeInput&, hal::SensorReadings& r) { r.leak_valid = r.leak = true; }},
+      {"battery at 4 %", FailsafeCause::battery_low,
+       [](FailsafeInput&, hal::SensorReadings& r) {
+         r.battery_valid = true;
+         r.soc_fraction = 0.04;
+       }},
+      {"battery at 4 %, unknown", FailsafeCause::none,
+       [](FailsafeInput&, hal::SensorReadings& r) {
+         r.battery_valid = false;
+         r.soc_fraction = 0.04;
+       }},
   };
   for (const Case& c : cases) {
     Failsafe fs(FailsafeParams{});
@@ -349,7 +361,8 @@ TEST(Failsafe, SensorAndImageMonitors) {
     in.readings = &r;
     EXPECT_EQ(fs.update(in), SafeAction::none) << c.what;
     c.set(in, r);
-    EXPECT_NE(fs.update(in), SafeAction::none) << c.what;
+    const SafeAction a = fs.update(in);
+    EXPECT_EQ(a != SafeAction::none, c.expected != FailsafeCause::none) << c.what;
     EXPECT_EQ(fs.cause(), c.expected) << c.what;
   }
 }

@@ -57,7 +57,7 @@ std::string error_of(const std::string& config) {
 }
 
 TEST(ConfigValidation, TheShippedConfigsPassWithoutWarnings) {
-  for (const char* name : {"sim.yaml", "vehicle.yaml"}) {
+  for (const char* name : {"sim.yaml", "vehicle.yaml", "bluerov2-heavy.yaml"}) {
     const std::string file = std::string(ROVCTL_SOURCE_DIR) + "/deploy/config/" + name;
     const AppConfig c = load_app_config(file);
     EXPECT_NO_THROW(load_rig(c)) << name;
@@ -122,6 +122,36 @@ TEST(ConfigValidation, TheBusIsReportedDegradedBeforeTheWatchdogStopsIt) {
       "fine.yaml", "calibration: " + kCalibration +
                        "\nthruster_bus:\n  timing:\n    watchdog_ms: 300\n    degraded_ms: 250\n");
   EXPECT_EQ(error_of(fine), "");
+}
+
+TEST(ConfigValidation, TheArdusubLinkAndAckTimeoutAreCheckedAtTheirLine) {
+  const TempDir t;
+  const std::string link = t.write("link.yaml", "calibration: " + kCalibration +
+                                                    "\nthruster_bus:\n  backend: ardusub\n"
+                                                    "  ardusub:\n    link: udp:0.0.0.0:14660\n");
+  EXPECT_NE(error_of(link).find(
+                link + ":5: thruster_bus.ardusub.link: 'udp:0.0.0.0:14660' has an unknown mode"),
+            std::string::npos)
+      << error_of(link);
+  const std::string ack = t.write("ack.yaml", "calibration: " + kCalibration +
+                                                  "\nthruster_bus:\n  backend: ardusub\n"
+                                                  "  ardusub:\n    ack_timeout_ms: 800\n");
+  EXPECT_EQ(error_of(ack), ack +
+                               ":5: thruster_bus.ardusub.ack_timeout_ms: must be below "
+                               "thruster_bus.timing.close_timeout_ms (the I/O thread answers the "
+                               "final disarm within it)");
+  const std::string fine = t.write("fine.yaml", "calibration: " + kCalibration +
+                                                    "\nthruster_bus:\n  backend: ardusub\n"
+                                                    "  ardusub:\n    link: udpin:0.0.0.0:14660\n");
+  EXPECT_EQ(error_of(fine), "");
+}
+
+TEST(ConfigValidation, ArdusubSensorsNeedTheArdusubBus) {
+  const TempDir t;
+  const std::string f =
+      t.write("s.yaml", "calibration: " + kCalibration + "\nsensors:\n  backend: ardusub\n");
+  EXPECT_EQ(error_of(f), f + ":3: sensors.backend: ardusub needs thruster_bus.backend ardusub (its "
+                             "link carries them)");
 }
 
 TEST(ConfigValidation, AMarkerNeedsThreeColoursAtDistinctPlaces) {

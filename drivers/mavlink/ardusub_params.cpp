@@ -1,0 +1,72 @@
+// Parameter declarations of the ArduSub thruster bus.
+#include "drivers/mavlink/ardusub_params.hpp"
+
+namespace rovctl::drivers {
+
+int ardusub_custom_mode(const std::string& flight_mode) {
+  // ArduSub's mode numbers (ArduSub/mode.h); only the modes where MANUAL_CONTROL is pilot input.
+  if (flight_mode == "stabilize") return 0;
+  if (flight_mode == "alt_hold") return 2;
+  if (flight_mode == "manual") return 19;
+  return -1;
+}
+
+void describe(hal::ParamVisitor& v, ArdusubAxisScale& p) {
+  v.param("surge_full_n", p.surge_full_n,
+          {"N", 1.0, 2000.0, "forward force at MANUAL_CONTROL x = 1000 with pilot gain 1"});
+  v.param("sway_full_n", p.sway_full_n,
+          {"N", 1.0, 2000.0, "starboard force at MANUAL_CONTROL y = 1000 with pilot gain 1"});
+  v.param("heave_full_n", p.heave_full_n,
+          {"N", 1.0, 2000.0, "upward force at MANUAL_CONTROL z = 1000 with pilot gain 1"});
+  v.param("yaw_full_nm", p.yaw_full_nm,
+          {"N*m", 0.1, 1000.0, "clockwise (from above) torque at MANUAL_CONTROL r = 1000, gain 1"});
+}
+
+void describe(hal::ParamVisitor& v, ArdusubParams& p) {
+  v.param("link", p.link,
+          "MAVLink endpoint: udpin:ADDR:PORT listens (a BlueOS endpoint sending to us), "
+          "udpout:ADDR:PORT sends to ArduSub");
+  v.param("mode", p.mode,
+          "wrench: the servo's body wrench as MANUAL_CONTROL x, y, z, r (ArduSub allocates and "
+          "levels)",
+          {"wrench"});
+  v.param("gcs_system_id", p.gcs_system_id,
+          {"-", 1, 255, "system id rovctl sends as; ArduSub takes control only from SYSID_MYGCS"});
+  v.param("gcs_component_id", p.gcs_component_id,
+          {"-", 0, 255, "component id rovctl sends as (190: MAV_COMP_ID_MISSIONPLANNER)"});
+  v.param("vehicle_system_id", p.vehicle_system_id,
+          {"-", 1, 255, "ArduSub's SYSID_THISMAV: MANUAL_CONTROL's target; others are ignored"});
+  v.param("vehicle_component_id", p.vehicle_component_id,
+          {"-", 0, 255, "ArduSub's component id (1: MAV_COMP_ID_AUTOPILOT1)"});
+  v.param("flight_mode", p.flight_mode,
+          "ArduSub mode required to arm and kept while armed; another mode is a bus fault",
+          {"stabilize", "alt_hold", "manual"});
+  v.param("pilot_gain", p.pilot_gain,
+          {"-", 0.1, 1.0, "ArduSub's joystick gain (JS_GAIN_DEFAULT), scales every axis"});
+  v.section("scale", "force and torque at full stick, pilot gain 1 (wrench mode)",
+            [&p](hal::ParamVisitor& s) { describe(s, p.scale); });
+  v.param("link_timeout_ms", p.link_timeout_ms,
+          {"ms", 1100, 30000,
+           "no ArduSub HEARTBEAT (sent at 1 Hz) for this long is link lost: a bus fault"});
+  v.param("heartbeat_period_ms", p.heartbeat_period_ms,
+          {"ms", 100, 5000, "period of rovctl's own HEARTBEAT as the ground station"});
+  v.param("ack_timeout_ms", p.ack_timeout_ms,
+          {"ms", 10, 5000,
+           "wait for ArduSub's COMMAND_ACK of arm or disarm, on the bus's I/O thread; below "
+           "thruster_bus.timing.close_timeout_ms"});
+}
+
+void describe(hal::ParamVisitor& v, ArdusubSensorParams& p) {
+  v.param("stream_interval_ms", p.stream_interval_ms,
+          {"ms", 10, 1000,
+           "interval requested (MAV_CMD_SET_MESSAGE_INTERVAL) for ATTITUDE_QUATERNION, "
+           "SCALED_PRESSURE2 and SYS_STATUS"});
+  v.param("stale_ms", p.stale_ms,
+          {"ms", 20, 5000, "a reading older than this is invalid (sensor failsafes then apply)"});
+  v.param("surface_pressure_hpa", p.surface_pressure_hpa,
+          {"hPa", 800.0, 1100.0, "absolute pressure at the surface, where depth is 0"});
+  v.param("water_density_kg_m3", p.water_density_kg_m3,
+          {"kg/m^3", 990.0, 1050.0, "water density for depth from pressure (997 fresh, 1025 sea)"});
+}
+
+}  // namespace rovctl::drivers

@@ -1,0 +1,52 @@
+// Settings of ArduSub as thruster bus (`thruster_bus.ardusub`: the MAVLink link, the ids ArduSub
+// expects, the map from newtons to MANUAL_CONTROL's axes) and as sensors (`sensors.ardusub`).
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+#include "hal/primitives/parameters.hpp"
+
+namespace rovctl::drivers {
+
+// Force or torque ArduSub's mixer produces at full stick (axis +-1000, z 0/1000) with the pilot
+// gain at 1; the defaults are the BlueROV2 Heavy's eight T200s at their mean of forward and
+// reverse thrust (16 V), through ArduSub's vectored-6DOF mixer.
+struct ArdusubAxisScale {
+  double surge_full_n = 130.0;
+  double sway_full_n = 130.0;
+  double heave_full_n = 183.0;
+  double yaw_full_nm = 34.6;
+};
+
+struct ArdusubParams {
+  std::string link = "udpin:0.0.0.0:14660";  // the BlueOS MAVLink endpoint pointed at rovctl
+  std::string mode = "wrench";               // wrench: the body wrench as MANUAL_CONTROL
+  int gcs_system_id = 255;                   // ArduSub's SYSID_MYGCS (MAV_GCS_SYSID on 4.7)
+  int gcs_component_id = 190;                // MAV_COMP_ID_MISSIONPLANNER
+  int vehicle_system_id = 1;                 // ArduSub's SYSID_THISMAV
+  int vehicle_component_id = 1;              // MAV_COMP_ID_AUTOPILOT1
+  std::string flight_mode = "stabilize";     // the mode ArduSub must be in to arm and to stay
+  double pilot_gain = 0.5;                   // ArduSub's joystick gain (JS_GAIN_DEFAULT)
+  ArdusubAxisScale scale;
+  int link_timeout_ms = 2500;      // no ArduSub HEARTBEAT (1 Hz) for this long: link lost
+  int heartbeat_period_ms = 1000;  // our own HEARTBEAT as the GCS
+  int ack_timeout_ms = 300;        // wait for COMMAND_ACK of arm/disarm (on the I/O thread)
+};
+
+// ArduSub's sensors streamed back over the bus's link (config section `sensors.ardusub`).
+struct ArdusubSensorParams {
+  int stream_interval_ms = 50;  // MAV_CMD_SET_MESSAGE_INTERVAL for attitude, pressure, battery
+  int stale_ms = 300;           // a reading older than this is reported invalid
+  double surface_pressure_hpa = 1013.25;  // absolute pressure at the surface (depth 0)
+  double water_density_kg_m3 = 1025.0;    // sea water; 997 in fresh water
+};
+
+// ArduSub's custom_mode number of a `flight_mode` name; -1 for an unknown name.
+int ardusub_custom_mode(const std::string& flight_mode);
+
+void describe(hal::ParamVisitor& v, ArdusubAxisScale& p);
+void describe(hal::ParamVisitor& v, ArdusubParams& p);
+void describe(hal::ParamVisitor& v, ArdusubSensorParams& p);
+
+}  // namespace rovctl::drivers

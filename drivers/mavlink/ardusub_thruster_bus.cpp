@@ -1,0 +1,268 @@
+// ArduSub thruster bus: MANUAL_CONTROL per command, ARM_DISARM with its acknowledgement, and the
+// vehicle's HEARTBEAT watched for link loss, a disarm or a mode change we did not ask for.
+#include "drivers/mavlink/ardusub_thruster_bus.hpp"
+
+#include <stdexcept>
+#include <thread>
+
+namespace rovctl::drivers {
+
+namespace {
+
+constexpr std::uint8_t kMavTypeGcs = 6;
+constexpr std::uint8_t kMavAutopilotInvalid = 8;
+constexpr std::uint8_t kMavStateActive = 4;
+constexpr std::uint8_t kMavResultAccepted = 0;
+// A babbling peer cannot hold the I/O thread: at most this many frames per drain.
+constexpr int kMaxFramesPerPump = 256;
+// Poll step while waiting for an acknowledgement or the first HEARTBEAT (start-up and the I/O
+// thread only).
+constexpr auto kPollStep = std::chrono::milliseconds(1);
+
+mavlink::UdpEndpoint parse_link(const std::string& text) {
+  mavlink::UdpEndpoint e;
+  std::string error;
+  if (!mavlink::parse_udp_endpoint(text, "thruster_bus.ardusub.link", e, error)) {
+    throw std::invalid_argument(error);
+  }
+  return e;
+}
+
+int required_mode(const std::string& name) {
+  const int mode = ardusub_custom_mode(name);
+  if (mode < 0) {
+    throw std::invalid_argument("thruster_bus.ardusub.flight_mode: unknown ArduSub mode '" + name +
+                                "'");
+  }
+  return mode;
+}
+
+}  // namespace
+
+const char* to_string(ArdusubFault f) {
+  switch (f) {
+    case ArdusubFault::none:
+      return "none";
+    case ArdusubFault::link_lost:
+      return "link lost (no ArduSub HEARTBEAT)";
+    case ArdusubFault::disarmed_under_us:
+      return "ArduSub disarmed";
+    case ArdusubFault::mode_changed:
+      return "ArduSub changed mode";
+    case ArdusubFault::arm_refused:
+      return "ArduSub refused to arm";
+  }
+  return "?";
+}
+
+ArdusubThrusterBus::ArdusubThrusterBus(const ArdusubParams& params,
+                                       const hal::ThrusterLayout& layout)
+    : params_(params),
+      map_(layout, params.scale, params.pilot_gain),
+      endpoint_(parse_link(params.link)),
+      required_mode_(required_mode(params.flight_mode)),
+      writer_(static_cast<std::uint8_t>(params.gcs_system_id),
+              static_cast<std::uint8_t>(params.gcs_component_id)),
+      thruster_count_(layout.thrusters.size()) {}
+
+ArdusubThrusterBus::~ArdusubThrusterBus() { close(); }
+
+std::string ArdusubThrusterBus::name() const {
+  return "ardusub " + params_.link + " system " + std::to_string(params_.vehicle_system_id);
+}
+
+template <typename Message>
+bool ArdusubThrusterBus::send(const Message& m) {
+  const std::size_t n = mavlink::write_message(writer_, m, frame_);
+  const bool ok = n > 0 && link_.send(std::span<const std::uint8_t>(frame_.data(), n)) ==
+                               mavlink::MavlinkUdpLink::Io::ok;
+  if (!ok) ++counters_.send_failures;
+  return ok;
+}
+
+bool ArdusubThrusterBus::send_heartbeat() {
+  mavlink::Heartbeat hb;
+  hb.type = kMavTypeGcs;
+  hb.autopilot = kMavAutopilotInvalid;
+  hb.system_status = kMavStateActive;
+  last_heartbeat_sent_ = Clock::now();
+  const bool ok = send(hb);
+  if (ok) ++counters_.heartbeats_sent;
+  return ok;
+}
+
+bool ArdusubThrusterBus::send_manual_control(const ArdusubAxes& axes) {
+  mavlink::ManualControl mc;
+  mc.x = axes.x;
+  mc.y = axes.y;
+  mc.z = axes.z;
+  mc.r = axes.r;
+  mc.target = static_cast<std::uint8_t>(params_.vehicle_system_id);
+  last_axes_ = axes;
+  const bool ok = send(mc);
+  if (ok) ++counters_.manual_control_sent;
+  return ok;
+}
+
+void ArdusubThrusterBus::pump() {
+  const auto now = Clock::now();
+  for (int i = 0; i < kMaxFramesPerPump; ++i) {
+    mavlink::Frame f;
+    const mavlink::MavlinkUdpLink::Io io = link_.receive(f);
+    if (io != mavlink::MavlinkUdpLink::Io::ok) break;
+    if (f.header.system_id != params_.vehicle_system_id) continue;
+    if (sensors_ != nullptr) sensors_->accept(f);
+    mavlink::Heartbeat hb;
+    mavlink::CommandAck ack;
+    if (f.header.component_id == params_.vehicle_component_id && mavlink::unpack(f, hb)) {
+      ++counters_.heartbeats_received;
+      heartbeat_seen_ = true;
+      last_heartbeat_ = now;
+      vehicle_armed_ = (hb.base_mode & mavlink::kModeFlagSafetyArmed) != 0;
+      vehicle_mode_ = hb.custom_mode;
+      // Only after ArduSub acknowledged our arm: any HEARTBEAT it sends after the ACK shows it.
+      if (armed_ && !vehicle_armed_) disarmed_under_us_ = true;
+      if (armed_ && vehicle_mode_ != static_cast<std::uint32_t>(required_mode_)) {
+        mode_changed_ = true;
+      }
+    } else if (mavlink::unpack(f, ack)) {
+      ++counters_.acks_received;
+      if (ack.command == mavlink::kCmdComponentArmDisarm) {
+        arm_result_ = ack.result;
+        ++arm_acks_;
+      }
+    }
+  }
+  if (opened_ &&
+      now - last_heartbeat_sent_ >= std::chrono::milliseconds(params_.heartbeat_period_ms)) {
+    (void)send_heartbeat();
+  }
+}
+
+bool ArdusubThrusterBus::open(std::string& error) {
+  if (thruster_count_ == 0) {
+    error = name() + ": no thrusters to drive";
+    return false;
+  }
+  if (!link_.is_open() && !link_.open(endpoint_, error)) return false;
+  opened_ = true;
+  armed_ = false;
+  // udpout: ArduSub learns of us from our first datagram; udpin: it is pointed at us already.
+  (void)send_heartbeat();
+  const auto deadline = Clock::now() + std::chrono::milliseconds(params_.link_timeout_ms);
+  while (!heartbeat_seen_ && Clock::now() < deadline) {
+    pump();
+    if (!heartbeat_seen_) std::this_thread::sleep_for(kPollStep);
+  }
+  if (!heartbeat_seen_) {
+    error = name() + ": no HEARTBEAT from ArduSub (system " +
+            std::to_string(params_.vehicle_system_id) + ", component " +
+            std::to_string(params_.vehicle_component_id) + ") within " +
+            std::to_string(params_.link_timeout_ms) + " ms";
+    close();
+    return false;
+  }
+  if (!send_manual_control(ArdusubAxes{}) || !request_streams()) {
+    error = name() + ": cannot send the neutral MANUAL_CONTROL or the stream requests";
+    close();
+    return false;
+  }
+  return true;
+}
+
+bool ArdusubThrusterBus::request_streams() {
+  if (sensors_ == nullptr) return true;
+  // Not in ArduSub's default streams (ATTITUDE_QUATERNION) or not at the tick's pace: ask.
+  const float interval_us = 1000.0F * static_cast<float>(sensors_->params().stream_interval_ms);
+  const std::uint8_t sys = static_cast<std::uint8_t>(params_.vehicle_system_id);
+  const std::uint8_t comp = static_cast<std::uint8_t>(params_.vehicle_component_id);
+  return send(mavlink::set_message_interval(sys, comp, mavlink::AttitudeQuaternion::kId,
+                                            interval_us)) &&
+         send(mavlink::set_message_interval(sys, comp, mavlink::ScaledPressure2::kId,
+                                            interval_us)) &&
+         send(mavlink::set_message_interval(sys, comp, mavlink::SysStatus::kId, interval_us));
+}
+
+bool ArdusubThrusterBus::send_arm(bool arm, Clock::duration wait) {
+  const std::uint64_t acks_before = arm_acks_;
+  if (!send(mavlink::arm_disarm(static_cast<std::uint8_t>(params_.vehicle_system_id),
+                                static_cast<std::uint8_t>(params_.vehicle_component_id), arm,
+                                false))) {
+    return false;
+  }
+  const auto deadline = Clock::now() + wait;
+  while (arm_acks_ == acks_before && Clock::now() < deadline) {
+    std::this_thread::sleep_for(kPollStep);
+    pump();
+  }
+  return arm_acks_ != acks_before && arm_result_ == kMavResultAccepted;
+}
+
+hal::BusStatus ArdusubThrusterBus::arm(bool armed) {
+  if (!opened_) return hal::BusStatus::fault;
+  pump();
+  const auto wait = std::chrono::milliseconds(params_.ack_timeout_ms);
+  if (!armed) {
+    armed_ = false;
+    const bool neutral = send_manual_control(ArdusubAxes{});
+    return neutral && send_arm(false, wait) ? hal::BusStatus::ok : hal::BusStatus::fault;
+  }
+  // Arming clears what the last arming's watch found; a refusal is a fault until the next try.
+  disarmed_under_us_ = false;
+  mode_changed_ = false;
+  arm_refused_ = false;
+  if (status() == hal::BusStatus::fault) return hal::BusStatus::fault;
+  if (vehicle_mode_ != static_cast<std::uint32_t>(required_mode_) ||
+      !send_manual_control(ArdusubAxes{}) || !send_arm(true, wait)) {
+    arm_refused_ = true;
+    return hal::BusStatus::fault;
+  }
+  armed_ = true;
+  return status();
+}
+
+ArdusubFault ArdusubThrusterBus::fault() const {
+  if (!heartbeat_seen_ ||
+      Clock::now() - last_heartbeat_ > std::chrono::milliseconds(params_.link_timeout_ms)) {
+    return ArdusubFault::link_lost;
+  }
+  if (disarmed_under_us_) return ArdusubFault::disarmed_under_us;
+  if (mode_changed_) return ArdusubFault::mode_changed;
+  if (arm_refused_) return ArdusubFault::arm_refused;
+  return ArdusubFault::none;
+}
+
+hal::BusStatus ArdusubThrusterBus::status() {
+  if (!opened_ || fault() != ArdusubFault::none) return hal::BusStatus::fault;
+  return send_failed_ ? hal::BusStatus::degraded : hal::BusStatus::ok;
+}
+
+hal::BusStatus ArdusubThrusterBus::write(const hal::ThrusterCommand& command) {
+  if (!opened_) return hal::BusStatus::fault;
+  pump();
+  send_failed_ = !send_manual_control(armed_ ? map_.axes(command) : ArdusubAxes{});
+  return status();
+}
+
+hal::BusStatus ArdusubThrusterBus::read(hal::ThrusterTelemetry& telemetry) {
+  telemetry = hal::ThrusterTelemetry{};
+  telemetry.count = thruster_count_;
+  telemetry.valid = false;
+  if (!opened_) return hal::BusStatus::fault;
+  pump();
+  return status();
+}
+
+void ArdusubThrusterBus::close() {
+  if (opened_ && link_.is_open()) {
+    // Best effort on every way out: neutral first, then the disarm with a bounded wait.
+    armed_ = false;
+    (void)send_manual_control(ArdusubAxes{});
+    (void)send_arm(false, std::chrono::milliseconds(params_.ack_timeout_ms));
+  }
+  opened_ = false;
+  armed_ = false;
+  link_.close();
+}
+
+}  // namespace rovctl::drivers

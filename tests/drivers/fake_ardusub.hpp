@@ -1,0 +1,132 @@
+// A fake ArduSub for tests: a thread on loopback UDP speaking MAVLink through rovctl's codec,
+// beating, acknowledging ARM_DISARM and streaming what it is told to.
+#pragma once
+
+#include <array>
+#include <atomic>
+#include <chrono>
+#include <functional>
+#include <mutex>
+#include <stdexcept>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "drivers/mavlink/mavlink_messages.hpp"
+#include "drivers/mavlink/mavlink_udp_link.hpp"
+
+namespace rovctl::drivers::testing {
+
+using namespace std::chrono_literals;
+namespace mav = mavlink;
+
+struct Received {
+  mav::FrameHeader header;
+  mav::ManualControl manual;
+  mav::CommandLong command;
+  bool is_manual = false;
+  bool is_command = false;
+  bool is_heartbeat = false;
+};
+
+// ArduSub as far as the bus sees it: HEARTBEAT every heartbeat_period, ACKs ARM_DISARM (unless
+// told to refuse), reports what it was told to report.
+class FakeArduSub {
+ public:
+  FakeArduSub() {
+    std::string error;
+    mav::UdpEndpoint e;
+    e.address = "127.0.0.1";
+    e.port = 0;
+    if (!link_.open(e, error)) throw std::runtime_error(error);
+    thread_ = std::thread([this] { run(); });
+  }
+  ~FakeArduSub() {
+    stop_ = true;
+    thread_.join();
+  }
+  std::uint16_t port() const { return link_.local_port(); }
+
+  std::atomic<bool> beating{true};
+  std::atomic<bool> armed{false};
+  std::atomic<std::uint32_t> mode{0};
+  std::atomic<bool> refuse_arm{false};
+  std::atomic<bool> streaming{false};  // ATTITUDE_QUATERNION and SCALED_PRESSURE2 with each beat
+
+  std::vector<Received> received() {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return received_;
+  }
+  // Waits (the test, not the bus) until `pred` holds on what arrived.
+  bool wait_for(const std::function<bool(const std::vector<Received>&)>& pred,
+                std::chrono::milliseconds limit = 5000ms) {
+    const auto end = std::chrono::steady_clock::now() + limit;
+    while (std::chrono::steady_clock::now() < end) {
+      if (pred(received())) return true;
+      std::this_thread::sleep_for(2ms);
+    }
+    return false;
+  }
+
+ private:
+  template <typename M>
+  void send(const M& m) {
+    std::array<std::uint8_t, mav::kMaxFrameBytes> out{};
+    const std::size_t n = mav::write_message(writer_, m, out);
+    (void)link_.send(std::span<const std::uint8_t>(out.data(), n));
+  }
+  void run() {
+    auto next_beat = std::chrono::steady_clock::now();
+    while (!stop_) {
+      mav::Frame f;
+      while (link_.receive(f) == mav::MavlinkUdpLink::Io::ok) {
+        Received r;
+        r.header = f.header;
+        mav::Heartbeat hb;
+        r.is_manual = mav::unpack(f, r.manual);
+        r.is_command = mav::unpack(f, r.command);
+        r.is_heartbeat = mav::unpack(f, hb);
+        if (r.is_command && r.command.command == mav::kCmdComponentArmDisarm) {
+          const bool accept = !refuse_arm || r.command.params[0] == 0.0F;
+          if (accept) armed = r.command.params[0] == 1.0F;
+          mav::CommandAck ack;
+          ack.command = r.command.command;
+          ack.result = accept ? 0 : 4;  // MAV_RESULT_ACCEPTED / FAILED
+          ack.target_system = f.header.system_id;
+          ack.target_component = f.header.component_id;
+          send(ack);
+        }
+        std::lock_guard<std::mutex> lock(mutex_);
+        received_.push_back(r);
+      }
+      const auto now = std::chrono::steady_clock::now();
+      if (beating && link_.has_peer() && now >= next_beat) {
+        mav::Heartbeat hb;
+        hb.type = 12;      // MAV_TYPE_SUBMARINE
+        hb.autopilot = 3;  // MAV_AUTOPILOT_ARDUPILOTMEGA
+        hb.base_mode = armed ? mav::kModeFlagSafetyArmed : 0;
+        hb.custom_mode = mode;
+        send(hb);
+        if (streaming) {
+          mav::AttitudeQuaternion a;
+          a.q_ned_body = {0.0F, 1.0F, 0.0F, 0.0F};  // upside down about x
+          send(a);
+          mav::ScaledPressure2 p;
+          p.press_abs_hpa = 1113.25F;
+          send(p);
+        }
+        next_beat = now + 20ms;
+      }
+      std::this_thread::sleep_for(1ms);
+    }
+  }
+
+  mav::MavlinkUdpLink link_;
+  mav::FrameWriter writer_{1, 1};
+  std::atomic<bool> stop_{false};
+  std::thread thread_;
+  std::mutex mutex_;
+  std::vector<Received> received_;
+};
+
+}  // namespace rovctl::drivers::testing
