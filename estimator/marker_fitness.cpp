@@ -76,19 +76,30 @@ double MarkerFitness::score_view(const View& view, const Eigen::Vector3d& c,
   const std::uint8_t* labels = view.labels;
   const int stride = view.stride;
   const std::uint8_t colour = s.colour;
+  int in_image = 0;  // of the samples
   auto hit = [&](float ox, float oy) -> int {
     const float pu = cu + a00 * ox + a01 * oy;
     const float pv = cv + a10 * ox + a11 * oy;
     if (!(pu >= 0.0f && pv >= 0.0f)) return 0;
     const unsigned iu = static_cast<unsigned>(pu), iv = static_cast<unsigned>(pv);
     if (iu >= w || iv >= hgt) return 0;
+    ++in_image;
     return labels[static_cast<std::size_t>(iv) * stride + iu] == colour;
   };
   int inside = 0, outside = 0;
   const float* p = inner_xy_.data();
   for (std::size_t i = 0; i < inner_xy_.size(); i += 2) inside += hit(p[i], p[i + 1]);
+  const int inner_in_image = in_image;
+  in_image = 0;
   p = outer_xy_.data();
   for (std::size_t i = 0; i < outer_xy_.size(); i += 2) outside += hit(p[i], p[i + 1]);
+  const int inner_total = static_cast<int>(inner_xy_.size() / 2);
+  const int outer_total = static_cast<int>(outer_xy_.size() / 2);
+  if (border_occluder_ && inner_in_image < inner_total && 4 * inner_in_image >= inner_total &&
+      in_image > 0) {
+    return static_cast<double>(inside) / inner_in_image -
+           static_cast<double>(outside) * outer_total * inv_outer_ / in_image;
+  }
   return inside * inv_inner_ - outside * inv_outer_;
 }
 

@@ -45,6 +45,11 @@ class MarkerFitness {
   // enable_far_field() allocates; update_far_field() rebuilds the grids from the current labels
   // (once per frame, after segmenting).
   void enable_far_field();
+  // Improved mode: the image border is a known occluder, so a sphere's samples beyond it are
+  // neither hits nor misses; a sphere is scored on its samples inside the image (at least a
+  // quarter of them, else as the paper does). The truth then outscores poses that pull a sphere
+  // cut by the border back into the image.
+  void enable_border_occluder() { border_occluder_ = true; }
   void update_far_field();
   bool far_field() const { return far_field_; }
   double far_field_weight() const { return far_weight_; }
@@ -83,6 +88,7 @@ class MarkerFitness {
   // Far field: per view, per colour class, the distance in grid cells from each cell to the
   // nearest cell holding that colour (CV_32F), and the scratch mask it is computed from.
   bool far_field_ = false;
+  bool border_occluder_ = false;
   double far_weight_ = 16.0;
   double far_reach_px_ = 800.0;
   int far_cell_px_ = 8;

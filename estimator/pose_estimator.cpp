@@ -42,6 +42,7 @@ PoseEstimator::PoseEstimator(const hal::StereoRig& rig, const hal::MarkerModel& 
   labels_[1].setTo(0);
   fitness_.set_labels(labels_[0], labels_[1]);
   if (params_.far_field_fitness) fitness_.enable_far_field();
+  if (params_.improved()) fitness_.enable_border_occluder();
 }
 
 void PoseEstimator::reset() { ga_.randomise(); }

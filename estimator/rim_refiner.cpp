@@ -113,6 +113,7 @@ void RimRefiner::find_edges(const cv::Mat* labels[2], const Silhouettes& predict
     for (int s = 0; s < spheres_; ++s) {
       edges.first[view][s] = edges.count;
       edges.first[view][s + 1] = edges.count;
+      edges.visible_rays[view][s] = 0;
       const Silhouette& sil = predicted[view][s];
       if (!sil.valid) continue;
       const auto colour = static_cast<std::uint8_t>(marker_.spheres[s].colour);
@@ -120,6 +121,13 @@ void RimRefiner::find_edges(const cv::Mat* labels[2], const Silhouettes& predict
         const double theta = 2.0 * M_PI * k / kRays - M_PI;
         const double c = std::cos(theta), sn = std::sin(theta);
         const double rho = sil.radius_along(Eigen::Vector2d(c, sn));
+        const Eigen::Vector2d rim_px = sil.centre_px + rho * Eigen::Vector2d(c, sn);
+        if (rim_px.x() < kBorderMarginPx || rim_px.y() < kBorderMarginPx ||
+            rim_px.x() > image.cols - 1 - kBorderMarginPx ||
+            rim_px.y() > image.rows - 1 - kBorderMarginPx) {
+          continue;  // the border hides this part of the rim: no evidence either way
+        }
+        ++edges.visible_rays[view][s];
         double edge_t = -1.0;
         int run = 0;  // consecutive colour samples
         bool in_colour = false, cut_by_border = false;
@@ -299,7 +307,14 @@ bool RimRefiner::refine(const cv::Mat& left_labels, const cv::Mat& right_labels,
     if (std::abs(r0(i)) <= kInlierPx) {
       ++result.inliers;
       sum2 += r0(i) * r0(i);
-      result.support[edges.points[i].view][edges.points[i].sphere] += 1.0 / kRays;
+      result.support[edges.points[i].view][edges.points[i].sphere] += 1.0;
+    }
+  }
+  for (int view = 0; view < 2; ++view) {
+    for (int s = 0; s < spheres_; ++s) {
+      const int visible = edges.visible_rays[view][s];
+      double& support = result.support[view][s];
+      support = visible >= kMinVisibleRays ? support / visible : 0.0;
     }
   }
   if (result.inliers < kMinInliers) return false;

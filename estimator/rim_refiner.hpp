@@ -18,7 +18,8 @@ struct RimFit {
   int inliers = 0;      // rim points within the inlier band at the end
   double rms_px = 0.0;  // of the inliers, radial
   // Per view and sphere (marker order): the fraction of the rays cast around the predicted
-  // silhouette whose colour edge lies on it. A whole sphere ~1; half hidden ~0.5; absent 0.
+  // silhouette's part inside the image whose colour edge lies on it. A whole sphere ~1; half
+  // hidden ~0.5; absent, or less than kMinVisibleRays of its rim inside the image, 0.
   std::array<std::array<double, 3>, 2> support{};
   // Covariance of the pose's error, rotation vector (rad) then translation (m).
   Eigen::Matrix<double, 6, 6> covariance = Eigen::Matrix<double, 6, 6>::Zero();
@@ -37,6 +38,10 @@ class RimRefiner {
   static constexpr int kRays = 48;     // per sphere and view
   static constexpr int kPolygon = 32;  // vertices of a predicted silhouette
   static constexpr double kInlierPx = 1.5;
+  // The image border is a known occluder: a sphere cut by it is judged on the part of its rim
+  // inside the image, if that is at least a quarter of the rim (90 deg of arc).
+  static constexpr int kMinVisibleRays = kRays / 4;
+  static constexpr double kBorderMarginPx = 2.0;  // a rim closer to the border shows no edge
 
  private:
   static constexpr int kSpheres = 3;
@@ -61,7 +66,8 @@ class RimRefiner {
   struct Edges {
     std::array<EdgePoint, kMaxPoints> points;
     int count = 0;
-    std::array<std::array<int, kSpheres + 1>, 2> first{};  // [view][sphere]: points' range
+    std::array<std::array<int, kSpheres + 1>, 2> first{};     // [view][sphere]: points' range
+    std::array<std::array<int, kSpheres>, 2> visible_rays{};  // predicted rim inside the image
   };
   using Residuals = Eigen::Matrix<double, kMaxPoints, 1>;
   using Jacobian = Eigen::Matrix<double, kMaxPoints, 6>;

@@ -120,3 +120,33 @@ TEST(RimRefiner, NothingToSeeLeavesThePoseAlone) {
 }
 
 }  // namespace
+
+namespace {
+
+TEST(RimRefiner, ASphereCutByTheImageBorderIsJudgedOnItsRimInsideTheImage) {
+  TestScene scene;
+  RimRefiner refiner(scene.rig, scene.marker);
+  // Green (the rightmost sphere) with its centre 0.4 radii inside the right border of the left
+  // image: about a third of its rim lies beyond the border.
+  Eigen::Isometry3d truth =
+      hal::make_pose(Eigen::Vector3d(0.0, 0.0, 0.6), Eigen::Quaterniond::Identity());
+  const hal::MarkerSphere& green = scene.marker.spheres[1];
+  ASSERT_EQ(green.colour, hal::ColourClass::green);
+  Eigen::Vector2d uv;
+  const Eigen::Vector3d centre = truth * green.centre_marker_m;
+  ASSERT_TRUE(scene.rig.left.project(centre, uv));
+  const double r_px = scene.rig.left.fx_px * green.radius_m / centre.z();
+  const double target_u_px = scene.rig.left.width_px - 0.5 - 0.4 * r_px;
+  truth.translation().x() += (target_u_px - uv.x()) * centre.z() / scene.rig.left.fx_px;
+  scene.render(truth, 5);
+  Labels l = segment(scene);
+  Eigen::Isometry3d T = nudged(truth);
+  RimFit fit;
+  ASSERT_TRUE(refiner.refine(l.left, l.right, T, &fit));
+  EXPECT_LT(translation_error_mm(T, truth), 1.0);
+  EXPECT_LT(rotation_error_deg(T, truth), 0.5);
+  // Counted over the whole rim it would be about 2/3: below a confirmed sphere's support.
+  for (double s : fit.support[0]) EXPECT_GT(s, 0.85);
+}
+
+}  // namespace
