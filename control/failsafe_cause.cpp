@@ -32,6 +32,7 @@ constexpr std::array<CauseNames, kFailsafeCauseCount> kNames{{
     {"search time limit", "search_time"},
     {"cpu overrun streak", "cpu_overrun"},
     {"thruster fault", "thruster_fault"},
+    {"disarm not acknowledged", "disarm_unacked"},
 }};
 
 }  // namespace

@@ -28,9 +28,10 @@ enum class FailsafeCause {
   search_time,          // SEARCH ran out of time (mission.search_timeout_s)
   cpu_overrun,          // consecutive ticks that overran their period
   thruster_fault,       // failed thrusters left x, y, z or yaw uncontrollable
+  disarm_unacked,       // the bus did not acknowledge the failsafe's disarm
 };
 inline constexpr std::size_t kFailsafeCauseCount =
-    static_cast<std::size_t>(FailsafeCause::thruster_fault) + 1;
+    static_cast<std::size_t>(FailsafeCause::disarm_unacked) + 1;
 
 // For the logs: "camera lost".
 const char* to_string(FailsafeCause c);
