@@ -319,7 +319,10 @@ bool VehicleLoop::tick(const TickInfo& info) {
       // takes it; meanwhile the failsafe knows the ESCs may still be armed.
       bus_.write(neutral_);
       bus_status_ = bus_.arm(false);
-      disarm_unacked_ = bus_status_ == hal::BusStatus::fault;
+      // A bus that answers nothing is the bus fault's (the ESCs' own timeout stops them); one
+      // that answers the rest but refuses the disarm leaves them armed.
+      disarm_unacked_ =
+          bus_status_ == hal::BusStatus::fault && bus_read_status_ != hal::BusStatus::fault;
       armed_ = disarm_unacked_;
       disarmed_by_failsafe_ = !disarm_unacked_;
     } else if (action == control::SafeAction::none && disarmed_by_failsafe_) {
