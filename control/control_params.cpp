@@ -58,7 +58,9 @@ void describe(hal::ParamVisitor& v, FailsafeParams& p) {
   v.param("camera_timeout_ticks", p.camera_timeout_ticks,
           {"ticks", 0, 1000, "consecutive camera timeouts tolerated (vision lost beyond)"});
   v.param("bus_degraded_ticks", p.bus_degraded_ticks,
-          {"ticks", 1, 1000, "consecutive degraded bus writes tolerated (bus slow beyond)"});
+          {"ticks", 0, 1000,
+           "consecutive degraded bus reports tolerated (bus slow beyond); a real bus reports "
+           "degraded only once its heartbeat gap passed thruster_bus.timing.degraded_ms"});
   v.param("max_mission_time_s", p.max_mission_time_s,
           {"s", 1.0, 86400.0, "mission time (CHARGING not counted) after which it is made safe"});
   v.param("action", p.action, "safe state of the causes whose policy action is 'default'",

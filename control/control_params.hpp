@@ -72,7 +72,9 @@ struct FailsafeParams {
   // single dropped frame passes, two in a row (66 ms without a picture) trip.
   int camera_timeout_ticks = 1;
   // Consecutive degraded bus writes tolerated (bus slow; a faulted bus trips at once).
-  int bus_degraded_ticks = 10;
+  // 0: the first degraded report trips. A real bus says degraded only once its heartbeat gap is
+  // past timing.degraded_ms (3 ticks): a further streak would only trip it after the watchdog.
+  int bus_degraded_ticks = 0;
   // Longest a mission may run, CHARGING not counted, before the vehicle is made safe. The sim's
   // dockings take 15-40 s and give up by 150 s; a recharge's undock adds 30 s.
   double max_mission_time_s = 900.0;

@@ -49,7 +49,8 @@ SafeAction parse_action(const std::string& name, const std::string& key) {
 // servo's axes cannot back anything out.
 bool thrusters_usable(FailsafeCause c) {
   return c != FailsafeCause::bus_fault && c != FailsafeCause::bus_slow &&
-         c != FailsafeCause::wrench_not_finite && c != FailsafeCause::thruster_fault;
+         c != FailsafeCause::wrench_not_finite && c != FailsafeCause::thruster_fault &&
+         c != FailsafeCause::disarm_unacked;
 }
 
 double seconds(std::chrono::nanoseconds d) { return std::chrono::duration<double>(d).count(); }
@@ -81,6 +82,8 @@ FailsafeCause Failsafe::check(const FailsafeInput& in) {
   bus_degraded_ = in.bus == hal::BusStatus::degraded ? bus_degraded_ + 1 : 0;
   sensors_silent_ = in.sensors_fitted && !in.sensors_answered ? sensors_silent_ + 1 : 0;
   overruns_ = in.overrun ? overruns_ + 1 : 0;
+  // First: it follows another trip's disarm, and what the vehicle can still do depends on it.
+  if (in.disarm_unacked) return FailsafeCause::disarm_unacked;
   if (in.grab == hal::GrabStatus::device_lost || in.grab == hal::GrabStatus::end_of_stream) {
     return FailsafeCause::camera_lost;
   }
@@ -159,8 +162,9 @@ SafeAction Failsafe::update(const FailsafeInput& in) {
     if (c != FailsafeCause::none) trip(c, in);
     return action();
   }
-  if (c != FailsafeCause::none && c != cause_ && !latched_ &&
-      !recovers_[static_cast<std::size_t>(c)]) {
+  const bool takes_over =
+      c == FailsafeCause::disarm_unacked || (!latched_ && !recovers_[static_cast<std::size_t>(c)]);
+  if (c != FailsafeCause::none && c != cause_ && takes_over) {
     trip(c, in);  // hardware failed while waiting for a transient cause to pass
     return action();
   }

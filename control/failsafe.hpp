@@ -51,6 +51,8 @@ struct FailsafeInput {
   bool overrun = false;  // releases were skipped right before this tick
   // The thrusters still allocated cannot control x, y, z and yaw (ThrusterHealth, allocator).
   bool thrusters_uncontrollable = false;
+  // A disarm the failsafe sent was not acknowledged by the bus (the ESCs may still be armed).
+  bool disarm_unacked = false;
 };
 
 enum class FailsafeEventKind { trip, safe, recovered, latched };

@@ -34,6 +34,7 @@ constexpr std::array<CauseNames, kFailsafeCauseCount> kNames{{
     {"thruster fault", "thruster_fault"},
     {"leak detected", "leak"},
     {"battery low", "battery_low"},
+    {"disarm not acknowledged", "disarm_unacked"},
 }};
 
 }  // namespace

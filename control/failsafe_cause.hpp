@@ -30,9 +30,10 @@ enum class FailsafeCause {
   thruster_fault,       // failed thrusters left x, y, z or yaw uncontrollable
   leak,                 // water inside the hull (the sensors' leak detector)
   battery_low,          // state of charge below control.failsafe.min_soc_fraction
+  disarm_unacked,       // the bus did not acknowledge the failsafe's disarm
 };
 inline constexpr std::size_t kFailsafeCauseCount =
-    static_cast<std::size_t>(FailsafeCause::battery_low) + 1;
+    static_cast<std::size_t>(FailsafeCause::disarm_unacked) + 1;
 
 // For the logs: "camera lost".
 const char* to_string(FailsafeCause c);

@@ -10,6 +10,9 @@ FailsafePolicy::FailsafePolicy() {
         FailsafeCause::attitude_limit, FailsafeCause::cpu_overrun}) {
     rule(c) = {"neutral", "auto"};
   }
+  // The ESCs may still be armed: zero thrust is all that is left to command (and the disarm is
+  // retried every tick).
+  rule(FailsafeCause::disarm_unacked) = {"neutral", "latch"};
 }
 
 void describe(hal::ParamVisitor& v, FailsafePolicy& p) {

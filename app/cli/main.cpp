@@ -23,8 +23,8 @@ commands:
              FAULT (recharge, injected mid-charge): none, knock, knocks, surge, charger,
              operator, camera; --fault (repeatable) injects NAME at T_S (default 0):
              camera_lost, camera_drop, frozen_frames, stale_frames, stamp_skew,
-             camera_black, bus_timeout, sensor_lost, sensor_nan, sensor_implausible,
-             tilt, cpu_stall, mission_time, search_time
+             camera_black, bus_timeout, bus_slow, disarm_unacked, sensor_lost,
+             sensor_nan, sensor_implausible, tilt, cpu_stall, mission_time, search_time
   faults     [--config FILE] [--json] [--trials N] [--only A,B] [--at T_S] [--jobs N]
              the fault matrix: each fault above injected mid-approach (transient
              ones N times): detected, ticks to safe, logged, recovered, docked

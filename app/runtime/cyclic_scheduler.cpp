@@ -170,6 +170,10 @@ void CyclicScheduler::end_stage(Stage stage) noexcept {
   if (budget_[i].count() > 0 && stage_time_[i] > budget_[i]) over_budget_mask_ |= 1u << i;
 }
 
+bool CyclicScheduler::tick_overrunning() const noexcept {
+  return clock_.now() > info_.deadline + period_;
+}
+
 std::chrono::nanoseconds CyclicScheduler::stage_time(Stage stage) const noexcept {
   return stage_time_[static_cast<std::size_t>(stage)];
 }

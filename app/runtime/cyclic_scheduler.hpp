@@ -131,6 +131,10 @@ class CyclicScheduler {
 
   // This tick's stage times so far (0 for stages not run yet), e.g. for its telemetry record.
   std::chrono::nanoseconds stage_time(Stage stage) const noexcept;
+  // Inside a tick: it has already run past the next release (it will overrun). The tick can act
+  // on its own overrun before it actuates, instead of learning it from the next tick's
+  // skipped_before.
+  bool tick_overrunning() const noexcept;
   // Bit i set: stage i exceeded its budget in this tick.
   std::uint32_t over_budget_mask() const noexcept { return over_budget_mask_; }
 

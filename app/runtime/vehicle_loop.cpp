@@ -2,6 +2,7 @@
 // command (neutral in the safe state), so the thrusters never keep a stale command.
 #include "app/runtime/vehicle_loop.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
@@ -98,9 +99,12 @@ void VehicleLoop::queue(const LoopEvent& e) {
 }
 
 void VehicleLoop::check_thrusters(std::chrono::nanoseconds now, std::chrono::nanoseconds period) {
+  // Read every tick, health monitor or not: its status is this tick's news of the bus (a slow
+  // or dead peer), where the last write's status is a tick old.
+  bus_read_status_ = bus_.read(thruster_telemetry_);
   if (!config_.control.thruster_health.enabled) return;
-  // A bus that cannot be read is the bus fault's business (its write status), not a thruster's.
-  if (bus_.read(thruster_telemetry_) == hal::BusStatus::fault) return;
+  // A bus that cannot be read is the bus fault's business, not a thruster's.
+  if (bus_read_status_ == hal::BusStatus::fault) return;
   // command_ is what the previous tick wrote: what the thrusters answer now.
   if (health_.update(thruster_telemetry_, command_,
                      std::chrono::duration<double>(period).count()) == 0) {
@@ -268,9 +272,14 @@ bool VehicleLoop::tick(const TickInfo& info) {
     fs.sensors_fitted = sensors_ != nullptr;
     fs.sensors_answered = have_readings;
     fs.readings = &readings_;
-    fs.overrun = info.skipped_before > 0;
+    // An overrun counts once: at the tick that overran when it already knows before actuating
+    // (a stalled capture or estimate), else at the next tick from the releases it skipped.
+    const bool overrunning = scheduler_.tick_overrunning();
+    fs.overrun = overrunning || (info.skipped_before > 0 && !overrun_counted_);
+    overrun_counted_ = overrunning;
     fs.search_timed_out = mission_.search_timed_out();
-    fs.bus = bus_status_;
+    fs.bus = std::max(bus_status_, bus_read_status_);  // the worse of the two
+    fs.disarm_unacked = disarm_unacked_;
     fs.T_cl_marker = estimate_.T_cl_marker;
     fs.fitness = have_images ? estimate_.fitness : 0.0;
     fs.wrench_body = wrench;
@@ -305,11 +314,17 @@ bool VehicleLoop::tick(const TickInfo& info) {
 
   {
     auto timer = scheduler_.stage(Stage::actuate);
-    if (action == control::SafeAction::disarm && armed_) {
+    if ((action == control::SafeAction::disarm && armed_) || disarm_unacked_) {
+      // An unacknowledged disarm is retried every tick, behind a neutral command, until the bus
+      // takes it; meanwhile the failsafe knows the ESCs may still be armed.
       bus_.write(neutral_);
       bus_status_ = bus_.arm(false);
-      armed_ = false;
-      disarmed_by_failsafe_ = true;
+      // A bus that answers nothing is the bus fault's (the ESCs' own timeout stops them); one
+      // that answers the rest but refuses the disarm leaves them armed.
+      disarm_unacked_ =
+          bus_status_ == hal::BusStatus::fault && bus_read_status_ != hal::BusStatus::fault;
+      armed_ = disarm_unacked_;
+      disarmed_by_failsafe_ = !disarm_unacked_;
     } else if (action == control::SafeAction::none && disarmed_by_failsafe_) {
       // Recovered (or re-armed by the operator) after a disarm: neutral, then arm again.
       bus_status_ = bus_.write(neutral_);

@@ -121,12 +121,15 @@ class VehicleLoop {
   estimator::PoseEstimate estimate_;
   hal::ThrusterCommand command_;
   hal::ThrusterCommand neutral_;
-  hal::BusStatus bus_status_ = hal::BusStatus::ok;
+  hal::BusStatus bus_status_ = hal::BusStatus::ok;       // the last write's (or arm's)
+  hal::BusStatus bus_read_status_ = hal::BusStatus::ok;  // this tick's telemetry read
+  bool disarm_unacked_ = false;                          // the failsafe's disarm not taken
   hal::ThrusterTelemetry thruster_telemetry_;
   bool thrusters_uncontrollable_ = false;
   bool armed_ = false;
   bool disarmed_by_failsafe_ = false;
   bool operator_hold_ = false;
+  bool overrun_counted_ = false;  // this tick's overrun went to the failsafe already
   std::chrono::nanoseconds last_servo_time_{-1};
   double axial_trim_n_ = 0.0;       // the servo's x integral kept at ALIGN -> DOCK (MissionOutput)
   double last_hold_force_n_ = 0.0;  // horizontal force commanded last tick (the hold's effort)

@@ -234,6 +234,10 @@ TrialResult run_docking_trial(const AppConfig& config, const hal::StereoRig& rig
   if (loop.failsafe().tripped()) result.failsafe = control::to_string(loop.failsafe().cause());
   result.ticks = stats.ticks;
   result.overruns = stats.skipped_releases;
+  if (vehicle.backends().sim != nullptr) {
+    result.bus_stale_sent = vehicle.backends().sim->bus().stale_sent();
+    result.bus_landed_after_neutral = vehicle.backends().sim->bus().landed_after_neutral();
+  }
   result.jitter_p99_ms = ms(stats.jitter.percentile(0.99));
   result.jitter_max_ms = ms(stats.jitter.max());
   result.estimator_ms_mean =

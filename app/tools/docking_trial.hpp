@@ -91,6 +91,10 @@ struct TrialResult {
   std::string failsafe;  // cause, or empty
   std::uint64_t ticks = 0;
   std::uint64_t overruns = 0;  // releases skipped
+  // At the mock bus: non-zero commands sent after a later neutral one (stale: must be 0), and
+  // non-zero requests already in flight to a slow peer that landed after a neutral was written.
+  std::uint64_t bus_stale_sent = 0;
+  std::uint64_t bus_landed_after_neutral = 0;
   double jitter_p99_ms = 0.0;
   double jitter_max_ms = 0.0;
   double estimator_ms_mean = 0.0;

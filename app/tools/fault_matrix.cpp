@@ -28,6 +28,8 @@ struct TrialScore {
   int ticks_to_safe = -1;
   bool recovered = false;
   bool docked = false;
+  int stale_after_trip = 0;
+  int landed_after_neutral = 0;
   std::string state_at_injection;
 };
 
@@ -65,12 +67,25 @@ TrialScore score(const TrialResult& result, control::FailsafeCause cause, double
     s.state_at_injection =
         control::to_string(static_cast<control::MissionState>(recs[first].mission_state));
   }
+  std::size_t safe_at = recs.size();
   for (std::size_t i = first; i < recs.size(); ++i) {
     if (safe_command(recs[i])) {
       s.ticks_to_safe = static_cast<int>(i - first) + 1;
+      safe_at = i;
       break;
     }
   }
+  // From the first safe command on, while the failsafe holds: thrust only to back out.
+  for (std::size_t i = safe_at; i < recs.size(); ++i) {
+    const TelemetryRecord& r = recs[i];
+    const bool backing_out =
+        r.mission_state == static_cast<std::int32_t>(control::MissionState::undock);
+    if ((r.flags & telemetry_flag::failsafe) != 0 && !backing_out && !safe_command(r)) {
+      ++s.stale_after_trip;
+    }
+  }
+  s.stale_after_trip += static_cast<int>(result.bus_stale_sent);
+  s.landed_after_neutral = static_cast<int>(result.bus_landed_after_neutral);
   s.docked = trial_docked(result);
   return s;
 }
@@ -148,6 +163,8 @@ std::vector<FaultRow> run_fault_matrix(const AppConfig& config, const hal::Stere
     row.logged += s.logged ? 1 : 0;
     row.recovered += s.recovered ? 1 : 0;
     row.docked += s.docked ? 1 : 0;
+    row.stale_after_trip_max = std::max(row.stale_after_trip_max, s.stale_after_trip);
+    row.landed_after_neutral_max = std::max(row.landed_after_neutral_max, s.landed_after_neutral);
     if (!s.detected || s.ticks_to_safe < 0) {
       row.ticks_to_safe_max = std::max(row.ticks_to_safe_max, 1 << 20);
     } else {
@@ -162,7 +179,7 @@ bool fault_matrix_passes(const std::vector<FaultRow>& rows, int max_ticks,
                          double min_docked_fraction) {
   return std::all_of(rows.begin(), rows.end(), [&](const FaultRow& r) {
     const bool safe = r.detected == r.trials && r.logged == r.trials && r.ticks_to_safe_max >= 1 &&
-                      r.ticks_to_safe_max <= max_ticks;
+                      r.ticks_to_safe_max <= max_ticks && r.stale_after_trip_max == 0;
     const bool recovers =
         !r.transient || (r.recovered == r.trials && r.docked >= min_docked_fraction * r.trials);
     return safe && recovers;
@@ -185,6 +202,8 @@ std::string fault_matrix_json(const std::vector<FaultRow>& rows) {
         .field("logged", r.logged)
         .field("recovered", r.recovered)
         .field("docked", r.docked)
+        .field("stale_after_trip_max", r.stale_after_trip_max)
+        .field("landed_after_neutral_max", r.landed_after_neutral_max)
         .end_object();
   }
   j.end_array().end_object();
@@ -194,14 +213,14 @@ std::string fault_matrix_json(const std::vector<FaultRow>& rows) {
 std::string fault_matrix_text(const std::vector<FaultRow>& rows) {
   std::string out =
       "fault               cause               kind       trials detected ticks logged "
-      "recovered docked  state at injection\n";
+      "recovered docked stale landed  state at injection\n";
   char line[256];
   for (const FaultRow& r : rows) {
-    std::snprintf(line, sizeof(line), "%-19s %-19s %-10s %6d %8d %5d %6d %9s %6d  %s\n",
+    std::snprintf(line, sizeof(line), "%-19s %-19s %-10s %6d %8d %5d %6d %9s %6d %5d %6d  %s\n",
                   r.fault.c_str(), r.cause.c_str(), r.transient ? "transient" : "latching",
                   r.trials, r.detected, r.ticks_to_safe_max, r.logged,
                   r.transient ? std::to_string(r.recovered).c_str() : "-", r.docked,
-                  r.state_at_injection.c_str());
+                  r.stale_after_trip_max, r.landed_after_neutral_max, r.state_at_injection.c_str());
     out += line;
   }
   return out;

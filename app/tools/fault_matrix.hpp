@@ -28,11 +28,17 @@ struct FaultRow {
   bool transient = false;
   double at_s = 0.0;
   int trials = 0;
-  int detected = 0;                // tripped with the expected cause, at or after the injection
-  int logged = 0;                  // the FAILSAFE line names the cause
-  int ticks_to_safe_max = -1;      // over the trials: ticks from injection to a safe command
-  int recovered = 0;               // a recovery logged (transient faults)
-  int docked = 0;                  // trial_docked
+  int detected = 0;            // tripped with the expected cause, at or after the injection
+  int logged = 0;              // the FAILSAFE line names the cause
+  int ticks_to_safe_max = -1;  // over the trials: ticks from injection to a safe command
+  int recovered = 0;           // a recovery logged (transient faults)
+  int docked = 0;              // trial_docked
+  // Over the trials, after the first safe command while the failsafe holds (not backing out):
+  // non-zero commands written, plus those the mock bus sent after a later neutral (stale).
+  int stale_after_trip_max = 0;
+  // Over the trials: non-zero requests already in flight that landed after a neutral was
+  // written (a slow peer cannot take back what it was sent).
+  int landed_after_neutral_max = 0;
   std::string state_at_injection;  // of the first trial
 };
 
@@ -40,8 +46,9 @@ struct FaultRow {
 std::vector<FaultRow> run_fault_matrix(const AppConfig& config, const hal::StereoRig& rig,
                                        const FaultMatrixOptions& options);
 
-// Every row meets the acceptance: detected, logged and safe within max_ticks in every trial;
-// transient faults recovered and docked in at least min_docked_fraction of their trials.
+// Every row meets the acceptance: detected, logged and safe within max_ticks in every trial, no
+// stale command after the trip; transient faults recovered and docked in at least
+// min_docked_fraction of their trials.
 bool fault_matrix_passes(const std::vector<FaultRow>& rows, int max_ticks,
                          double min_docked_fraction);
 

@@ -15,6 +15,9 @@ constexpr InjectedFault kFaults[] = {
     {"stamp_skew", "stereo_skew", true, "the right image stamped stamp_skew_ms early"},
     {"camera_black", "camera_dead", false, "the right camera's image is black"},
     {"bus_timeout", "bus_fault", false, "the thruster bus stops answering"},
+    {"bus_slow", "bus_slow", true, "the thruster bus answers bus_latency_ms late"},
+    {"disarm_unacked", "disarm_unacked", false,
+     "the sensors are lost (a disarm) and the bus does not acknowledge the disarm"},
     {"sensor_lost", "sensor_lost", false, "the navigation sensors stop answering"},
     {"sensor_nan", "sensor_nan", false, "depth and attitude read NaN, flagged valid"},
     {"sensor_implausible", "sensor_implausible", false, "depth reads -1000 m, flagged valid"},
@@ -77,6 +80,11 @@ void apply_injected_fault(const InjectedFault& f, double at_s, AppConfig& config
   if (name == "stamp_skew") x.stamp_skew_at_s = at_s;
   if (name == "camera_black") x.camera_black_at_s = at_s;
   if (name == "bus_timeout") x.bus_timeout_at_s = at_s;
+  if (name == "bus_slow") x.bus_slow_at_s = at_s;
+  if (name == "disarm_unacked") {
+    x.sensor_lost_at_s = at_s;
+    x.disarm_ignored_at_s = at_s;
+  }
   if (name == "sensor_lost") x.sensor_lost_at_s = at_s;
   if (name == "sensor_nan") x.sensor_nan_at_s = at_s;
   if (name == "sensor_implausible") x.sensor_implausible_at_s = at_s;

@@ -64,6 +64,13 @@ void describe(ParamVisitor& v, FaultInjection& f) {
   timed("cpu_stall_at_s", f.cpu_stall_at_s, "cpu_stall_for_s", f.cpu_stall_for_s,
         "each grab stalls the tick cpu_stall_ms from this sim time (virtual time; -1: never)");
   v.param("cpu_stall_ms", f.cpu_stall_ms, {"ms", 0.0, 10000.0, "the stall per tick"});
+  timed("bus_slow_at_s", f.bus_slow_at_s, "bus_slow_for_s", f.bus_slow_for_s,
+        "the thruster bus answers bus_latency_ms late from this sim time (-1: never)");
+  v.param("bus_latency_ms", f.bus_latency_ms,
+          {"ms", 0.0, 10000.0, "the slow bus's answer time per request"});
+  v.param(
+      "disarm_ignored_at_s", f.disarm_ignored_at_s,
+      {"s", -1.0, 1e6, "the thruster bus acknowledges no disarm from this sim time (-1: never)"});
   v.param("knock_after_seated_s", f.knock_after_seated_s,
           {"s", -1.0, 1e6, "a knock out of the socket once seated this long (-1: never)"});
   v.param("knock_force_n", f.knock_force_n,

@@ -57,6 +57,13 @@ struct FaultInjection {
   double cpu_stall_at_s = -1.0;
   double cpu_stall_for_s = 1.0;
   double cpu_stall_ms = 50.0;
+  // The thruster bus's peer answers each request bus_latency_ms late for bus_slow_for_s (in
+  // virtual time: the sim stays deterministic); from disarm_ignored_at_s it does not acknowledge
+  // a disarm (the ESCs stay armed).
+  double bus_slow_at_s = -1.0;
+  double bus_slow_for_s = 1.0;
+  double bus_latency_ms = 100.0;
+  double disarm_ignored_at_s = -1.0;
 
   // The recharging mission's faults, timed by the seat rather than the clock (a trial docks after
   // 15-40 s): each comes once the probe has been seated that long (< 0: never).

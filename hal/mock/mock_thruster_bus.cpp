@@ -1,4 +1,5 @@
-// The simulated ESC bus: delivery into the thruster model, arming and injected bus faults.
+// The simulated ESC bus: delivery into the thruster model (at once, or through a slow peer in
+// virtual time), arming and injected bus faults.
 #include "hal/mock/mock_thruster_bus.hpp"
 
 #include <algorithm>
@@ -12,6 +13,13 @@ namespace {
 constexpr double kFullThrustRpm = 3800.0;
 // What a dead thruster's ESC reports (any non-zero flag is a fault to the controller).
 constexpr std::uint16_t kInjectedFaultFlag = 0x0001;
+
+bool all_zero(const ThrusterCommand& c) {
+  for (std::size_t i = 0; i < c.count && i < kMaxThrusters; ++i) {
+    if (c.thrust_fraction[i] != 0.0) return false;
+  }
+  return true;
+}
 }  // namespace
 
 MockThrusterBus::MockThrusterBus(SimulatedWorld& world, const FaultInjection& faults)
@@ -34,7 +42,13 @@ bool MockThrusterBus::open(std::string& error) {
 
 BusStatus MockThrusterBus::arm(bool armed) {
   if (!open_ || timed_out()) return BusStatus::fault;
-  if (!armed) world_.neutral_thrusters();
+  if (!armed && FaultInjection::active(faults_.disarm_ignored_at_s, world_.time())) {
+    return BusStatus::fault;  // not acknowledged: the ESCs stay armed
+  }
+  if (!armed) {
+    world_.neutral_thrusters();
+    in_flight_ = slot_full_ = false;  // disarmed ESCs drop what they were asked
+  }
   armed_ = armed;
   return BusStatus::ok;
 }
@@ -56,13 +70,59 @@ BusStatus MockThrusterBus::write(const ThrusterCommand& command) {
     }
   }
   if (!finite) ++non_finite_count_;
-  world_.command_thrusters(delivered);
-  return finite ? BusStatus::ok : BusStatus::degraded;
+  const std::chrono::nanoseconds now = world_.time();
+  if (all_zero(delivered)) last_neutral_at_ = now;
+  serve(now);
+  if (in_flight_) {
+    slot_command_ = delivered;  // replaces an unsent one: never sent late
+    slot_written_at_ = now;
+    slot_full_ = true;
+  } else {
+    in_flight_ = true;
+    in_flight_command_ = delivered;
+    in_flight_written_at_ = in_flight_sent_at_ = now;
+    const bool slow = FaultInjection::active(faults_.bus_slow_at_s, faults_.bus_slow_for_s, now);
+    in_flight_due_ =
+        now + std::chrono::nanoseconds(slow ? std::llround(faults_.bus_latency_ms * 1e6) : 0);
+  }
+  serve(now);
+  if (!finite) return BusStatus::degraded;
+  return peer_status(now);
+}
+
+void MockThrusterBus::serve(std::chrono::nanoseconds now) {
+  while (in_flight_ && in_flight_due_ <= now) {
+    deliver(in_flight_command_, in_flight_written_at_);
+    const std::chrono::nanoseconds answered_at = in_flight_due_;
+    in_flight_ = slot_full_;
+    if (!slot_full_) break;
+    // The peer answered: the newest command goes out now, at the latency of that moment.
+    slot_full_ = false;
+    in_flight_command_ = slot_command_;
+    in_flight_written_at_ = slot_written_at_;
+    in_flight_sent_at_ = answered_at;
+    if (!all_zero(slot_command_) && last_neutral_at_ > slot_written_at_) ++stale_sent_;
+    const bool slow =
+        FaultInjection::active(faults_.bus_slow_at_s, faults_.bus_slow_for_s, answered_at);
+    in_flight_due_ = answered_at + std::chrono::nanoseconds(
+                                       slow ? std::llround(faults_.bus_latency_ms * 1e6) : 0);
+  }
+}
+
+void MockThrusterBus::deliver(const ThrusterCommand& command, std::chrono::nanoseconds written_at) {
+  if (!all_zero(command) && last_neutral_at_ > written_at) ++landed_after_neutral_;
+  world_.command_thrusters(command);
+}
+
+BusStatus MockThrusterBus::peer_status(std::chrono::nanoseconds now) const {
+  return in_flight_ && in_flight_sent_at_ < now ? BusStatus::degraded : BusStatus::ok;
 }
 
 BusStatus MockThrusterBus::read(ThrusterTelemetry& telemetry) {
   telemetry.valid = false;
   if (!open_ || timed_out()) return BusStatus::fault;
+  const std::chrono::nanoseconds now = world_.time();
+  serve(now);
   const ThrusterModel& model = world_.thrusters();
   const double now_s = std::chrono::duration<double>(world_.time()).count();
   // By bus channel, as the real buses report.
@@ -79,7 +139,7 @@ BusStatus MockThrusterBus::read(ThrusterTelemetry& telemetry) {
     telemetry.count = std::max(telemetry.count, ch + 1);
   }
   telemetry.valid = true;
-  return BusStatus::ok;
+  return peer_status(now);
 }
 
 void MockThrusterBus::close() {

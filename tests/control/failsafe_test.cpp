@@ -389,5 +389,23 @@ TEST(FailsafeThrusters, UncontrollableThrustersTripAsAThrusterFaultAndDoNotBackO
   EXPECT_STREQ(to_string(e.cause), "thruster fault");
 }
 
+TEST(Failsafe, AnUnacknowledgedDisarmTakesOverALatchedTripAndHoldsNeutral) {
+  Failsafe fs{FailsafeParams{}};
+  FailsafeInput in = healthy(0s);
+  in.sensors_fitted = true;  // silent: sensors lost after the tolerated tick
+  fs.update(in);
+  in.now = 33ms;
+  ASSERT_EQ(fs.update(in), SafeAction::disarm);
+  ASSERT_EQ(fs.cause(), FailsafeCause::sensor_lost);
+  in.now = 66ms;
+  in.disarm_unacked = true;  // a latched cause does not block it
+  EXPECT_EQ(fs.update(in), SafeAction::neutral);
+  EXPECT_EQ(fs.cause(), FailsafeCause::disarm_unacked);
+  in.disarm_unacked = false;
+  in.sensors_answered = true;
+  in.now = 5s;
+  EXPECT_EQ(fs.update(in), SafeAction::neutral) << "latched until the operator re-arms";
+}
+
 }  // namespace
 }  // namespace rovctl::control

@@ -1,4 +1,5 @@
-// The mock thruster bus: open, arming, neutral when disarmed, delivery, injected faults.
+// The mock thruster bus: open, arming, neutral when disarmed, delivery, injected faults (a slow
+// peer in virtual time, an ignored disarm).
 #include "hal/mock/mock_thruster_bus.hpp"
 
 #include <gtest/gtest.h>
@@ -170,6 +171,56 @@ TEST_F(FailingThruster, AFailureOnAThrusterTheLayoutLacksIsRejected) {
   EXPECT_THROW(world.set_thruster_faults(f), std::invalid_argument);
   f.thruster_dead_at_s = -1.0;  // never: the index does not matter
   EXPECT_NO_THROW(world.set_thruster_faults(f));
+}
+
+TEST_F(BusFixture, SlowPeerLandsOneRequestAtATimeAndNeverSendsASupersededCommand) {
+  FaultInjection f;
+  f.bus_slow_at_s = 0.0;
+  f.bus_slow_for_s = 0.2;
+  f.bus_latency_ms = 100.0;
+  MockThrusterBus bus(world, f);
+  std::string error;
+  ASSERT_TRUE(bus.open(error));
+  ASSERT_EQ(bus.arm(true), BusStatus::ok);
+  ThrusterTelemetry tel;
+  // 0 ms: sent, answered at 100 ms. The same tick it is not late yet.
+  EXPECT_EQ(bus.write(all(0.5)), BusStatus::ok);
+  world.step_to(milliseconds(33));
+  EXPECT_EQ(world.thrusters().thrust_n(0), 0.0) << "not delivered before the peer answers";
+  EXPECT_EQ(bus.read(tel), BusStatus::degraded) << "a request of an earlier tick unanswered";
+  EXPECT_EQ(bus.write(all(0.6)), BusStatus::degraded);  // waits in the slot
+  world.step_to(milliseconds(66));
+  EXPECT_EQ(bus.write(all(0.0)), BusStatus::degraded);  // neutral replaces 0.6: never sent
+  world.step_to(milliseconds(100));
+  EXPECT_EQ(bus.read(tel), BusStatus::ok);  // 0.5 answered, the neutral sent just now
+  world.step_to(milliseconds(133));
+  EXPECT_GT(world.thrusters().thrust_n(0), 0.0);
+  EXPECT_EQ(bus.landed_after_neutral(), 1u) << "0.5 was in flight when neutral was written";
+  EXPECT_EQ(bus.read(tel), BusStatus::degraded);  // the neutral, sent at 100 ms, unanswered
+  world.step_to(milliseconds(200));
+  EXPECT_EQ(bus.read(tel), BusStatus::ok);  // the neutral answered at 200 ms
+  world.step_to(milliseconds(233));
+  EXPECT_EQ(world.thrusters().thrust_n(0), 0.0);
+  EXPECT_EQ(bus.stale_sent(), 0u);
+  // The peer is fast again: delivered at once.
+  EXPECT_EQ(bus.write(all(0.5)), BusStatus::ok);
+  world.step_to(milliseconds(266));
+  EXPECT_GT(world.thrusters().thrust_n(0), 0.0);
+}
+
+TEST_F(BusFixture, IgnoredDisarmIsNotAcknowledgedAndTheEscsStayArmed) {
+  FaultInjection f;
+  f.disarm_ignored_at_s = 0.05;
+  MockThrusterBus bus(world, f);
+  std::string error;
+  ASSERT_TRUE(bus.open(error));
+  ASSERT_EQ(bus.arm(true), BusStatus::ok);
+  world.step_to(milliseconds(60));
+  EXPECT_EQ(bus.arm(false), BusStatus::fault);
+  EXPECT_TRUE(bus.armed());
+  EXPECT_EQ(bus.write(all(0.5)), BusStatus::ok);
+  world.step_to(milliseconds(70));
+  EXPECT_GT(world.thrusters().thrust_n(0), 0.0) << "still armed: commands still obeyed";
 }
 
 }  // namespace
