@@ -94,11 +94,10 @@ double MarkerFitness::score_view(const View& view, const Eigen::Vector3d& c,
   p = outer_xy_.data();
   for (std::size_t i = 0; i < outer_xy_.size(); i += 2) outside += hit(p[i], p[i + 1]);
   const int inner_total = static_cast<int>(inner_xy_.size() / 2);
-  const int outer_total = static_cast<int>(outer_xy_.size() / 2);
   if (border_occluder_ && inner_in_image < inner_total && 4 * inner_in_image >= inner_total &&
       in_image > 0) {
-    return static_cast<double>(inside) / inner_in_image -
-           static_cast<double>(outside) * outer_total * inv_outer_ / in_image;
+    // Both rings scored on their samples inside the image only.
+    return static_cast<double>(inside) / inner_in_image - static_cast<double>(outside) / in_image;
   }
   return inside * inv_inner_ - outside * inv_outer_;
 }
