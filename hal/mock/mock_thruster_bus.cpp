@@ -20,6 +20,13 @@ bool all_zero(const ThrusterCommand& c) {
   }
   return true;
 }
+
+// How long the peer takes to answer a request sent at `sent_at`.
+std::chrono::nanoseconds peer_latency(const FaultInjection& faults,
+                                      std::chrono::nanoseconds sent_at) {
+  const bool slow = FaultInjection::active(faults.bus_slow_at_s, faults.bus_slow_for_s, sent_at);
+  return std::chrono::nanoseconds(slow ? std::llround(faults.bus_latency_ms * 1e6) : 0);
+}
 }  // namespace
 
 MockThrusterBus::MockThrusterBus(SimulatedWorld& world, const FaultInjection& faults)
@@ -81,9 +88,7 @@ BusStatus MockThrusterBus::write(const ThrusterCommand& command) {
     in_flight_ = true;
     in_flight_command_ = delivered;
     in_flight_written_at_ = in_flight_sent_at_ = now;
-    const bool slow = FaultInjection::active(faults_.bus_slow_at_s, faults_.bus_slow_for_s, now);
-    in_flight_due_ =
-        now + std::chrono::nanoseconds(slow ? std::llround(faults_.bus_latency_ms * 1e6) : 0);
+    in_flight_due_ = now + peer_latency(faults_, now);
   }
   serve(now);
   if (!finite) return BusStatus::degraded;
@@ -102,10 +107,7 @@ void MockThrusterBus::serve(std::chrono::nanoseconds now) {
     in_flight_written_at_ = slot_written_at_;
     in_flight_sent_at_ = answered_at;
     if (!all_zero(slot_command_) && last_neutral_at_ > slot_written_at_) ++stale_sent_;
-    const bool slow =
-        FaultInjection::active(faults_.bus_slow_at_s, faults_.bus_slow_for_s, answered_at);
-    in_flight_due_ = answered_at + std::chrono::nanoseconds(
-                                       slow ? std::llround(faults_.bus_latency_ms * 1e6) : 0);
+    in_flight_due_ = answered_at + peer_latency(faults_, answered_at);
   }
 }
 
