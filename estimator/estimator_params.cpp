@@ -56,6 +56,11 @@ void describe(hal::ParamVisitor& v, EstimatorParams& p) {
           {"-", 0.0, 1.0,
            "improved mode: fraction of a sphere's predicted rim that its colour edge must confirm "
            "for a partly hidden sphere (score below sphere_support) to count as seen"});
+  v.param("rim_sharp_rms_px", p.rim_sharp_rms_px,
+          {"px", 0.1, 10.0,
+           "improved mode: the rim fit replaces the centroids' pose only when the rims fit this "
+           "well (rms); a sharp sphere's rim fits to 0.35-0.45 px, a blurred or noisy one (motion "
+           "blur, JPEG) leans the pose while its centroids stay true"});
   v.param("ok_bound_mm", p.ok_bound_mm,
           {"mm", 0.1, 1000.0,
            "improved mode: an estimate is ok only when its 3-sigma position bound is within this"});

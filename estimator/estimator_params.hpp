@@ -76,6 +76,7 @@ struct EstimatorParams {
   // its colour and none of the ring).
   double sphere_support = 0.8;
   double rim_support = 0.4;
+  double rim_sharp_rms_px = 0.62;
   double ok_bound_mm = 10.0;
   double ok_bound_deg = 5.0;
   // Improved mode: how far the segmentation divides out the scene's colour cast (0 off, 1 full

@@ -151,8 +151,8 @@ PoseEstimate PoseEstimator::estimate() {
       }
       const double f = fitness_.evaluate(T);
       ++extra_evaluations_;
-      if (weakest >= params_.rim_support && f >= params_.recognition_threshold &&
-          f >= estimate.fitness - 0.15) {
+      if (weakest >= params_.rim_support && fit.rms_px <= params_.rim_sharp_rms_px &&
+          f >= params_.recognition_threshold && f >= estimate.fitness - 0.15) {
         estimate.T_cl_marker = T;
         estimate.fitness = f;
         estimate.rim_refined = true;

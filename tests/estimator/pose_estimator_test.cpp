@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <opencv2/imgproc.hpp>
 #include <string>
 
 #include "test_scene.hpp"
@@ -75,6 +76,39 @@ TEST(PoseEstimator, InconsistentParamsThrow) {
   EstimatorParams p;
   p.search.z_min_m = 2.0;
   EXPECT_THROW(PoseEstimator(scene.rig, scene.marker, p, 1), std::invalid_argument);
+}
+
+// A smeared rim fits loosely and leans the pose, while the smear's centroid stays at mid-exposure:
+// the rims must not replace the centroids' pose then, and no blurred pair may be ok and wrong.
+TEST(PoseEstimator, AMotionBlurredPairKeepsTheCentroidsPoseNotTheSmearedRims) {
+  TestScene scene;
+  std::mt19937_64 rng(11);
+  int rim_refined = 0, sharp_rim_refined = 0;
+  for (int trial = 0; trial < 8; ++trial) {
+    const Eigen::Isometry3d truth = random_pose(rng);
+    scene.render(truth, trial);
+    PoseEstimator sharp(scene.rig, scene.marker, EstimatorParams{}, trial);
+    sharp_rim_refined += sharp.update(scene.left_bgr, scene.right_bgr).rim_refined ? 1 : 0;
+    // A 15 px smear along a slanted line, as a sideways surge during the exposure.
+    cv::Mat kernel = cv::Mat::zeros(15, 15, CV_32F);
+    cv::line(kernel, {0, 4}, {14, 10}, cv::Scalar(1.0));
+    kernel /= cv::sum(kernel)[0];
+    cv::Mat left, right;
+    cv::filter2D(scene.left_bgr, left, -1, kernel);
+    cv::filter2D(scene.right_bgr, right, -1, kernel);
+    PoseEstimator blurred(scene.rig, scene.marker, EstimatorParams{}, trial);
+    const PoseEstimate e = blurred.update(left, right);
+    rim_refined += e.rim_refined ? 1 : 0;
+    if (e.ok) {
+      EXPECT_LT(translation_error_mm(e.T_cl_marker, truth), 10.0) << trial;
+      EXPECT_LT(rotation_error_deg(e.T_cl_marker, truth), 5.0) << trial;
+    }
+    if (e.rim_refined) {
+      EXPECT_LE(e.rim_rms_px, EstimatorParams{}.rim_sharp_rms_px) << trial;
+    }
+  }
+  EXPECT_GE(sharp_rim_refined, 6);
+  EXPECT_LT(rim_refined, sharp_rim_refined);
 }
 
 }  // namespace
