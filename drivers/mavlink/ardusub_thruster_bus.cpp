@@ -167,6 +167,20 @@ bool ArdusubThrusterBus::open(std::string& error) {
     close();
     return false;
   }
+  // Armed before the requested streams arrive, the first ticks would find no readings and trip
+  // the sensors-lost failsafe (latched): wait for them here, at start-up, as for the HEARTBEAT.
+  const auto streams_deadline = Clock::now() + std::chrono::milliseconds(params_.link_timeout_ms);
+  while (sensors_ != nullptr && !sensors_->has_attitude_and_depth() &&
+         Clock::now() < streams_deadline) {
+    std::this_thread::sleep_for(kPollStep);
+    pump();
+  }
+  if (sensors_ != nullptr && !sensors_->has_attitude_and_depth()) {
+    error = name() + ": no ATTITUDE_QUATERNION and SCALED_PRESSURE2 from ArduSub within " +
+            std::to_string(params_.link_timeout_ms) + " ms of requesting them";
+    close();
+    return false;
+  }
   return true;
 }
 

@@ -41,7 +41,8 @@ class ArdusubThrusterBus final : public hal::ThrusterBus {
   ArdusubThrusterBus(const ArdusubThrusterBus&) = delete;
   ArdusubThrusterBus& operator=(const ArdusubThrusterBus&) = delete;
 
-  // Opens the socket and waits (start-up, at most link_timeout_ms) for ArduSub's HEARTBEAT.
+  // Opens the socket and waits (start-up, at most link_timeout_ms) for ArduSub's HEARTBEAT, then
+  // with sensors attached (at most link_timeout_ms more) for their attitude and depth.
   bool open(std::string& error) override;
   // Sends neutral, then ARM_DISARM, and waits at most ack_timeout_ms for its COMMAND_ACK. Runs
   // on the bus I/O thread (BusIoThread), never on the tick. Arming needs the link and the
