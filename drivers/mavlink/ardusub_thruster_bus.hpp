@@ -7,7 +7,9 @@
 #include <chrono>
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <string>
+#include <string_view>
 
 #include "drivers/mavlink/ardusub_params.hpp"
 #include "drivers/mavlink/ardusub_sensors.hpp"
@@ -59,6 +61,11 @@ class ArdusubThrusterBus final : public hal::ThrusterBus {
   // thread that owns the socket, and open() requests its streams (SET_MESSAGE_INTERVAL).
   void attach(ArdusubSensors& sensors) { sensors_ = &sensors; }
 
+  // After open(), not from the tick (`rovctl check`): ArduSub's parameter `id` by
+  // PARAM_REQUEST_READ, answered by PARAM_VALUE; waits ack_timeout_ms per try, 3 tries (UDP);
+  // none when ArduSub does not answer.
+  std::optional<float> read_parameter(std::string_view id);
+
   std::uint16_t local_port() const { return link_.local_port(); }
   ArdusubFault fault() const;
   const ArdusubCounters& counters() const { return counters_; }
@@ -100,6 +107,9 @@ class ArdusubThrusterBus final : public hal::ThrusterBus {
   bool disarmed_under_us_ = false;
   bool mode_changed_ = false;
   bool arm_refused_ = false;
+  std::array<char, 16> awaited_param_{};  // read_parameter()'s id while it waits
+  bool param_answered_ = false;
+  float param_value_ = 0.0F;
   std::uint64_t arm_acks_ = 0;  // COMMAND_ACKs of ARM_DISARM
   std::uint8_t arm_result_ = 0;
   ArdusubCounters counters_;
