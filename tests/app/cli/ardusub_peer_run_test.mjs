@@ -126,7 +126,7 @@ async function finish(run, what) {
   // The rate is judged on the peer. When rovctl's own scheduler says the machine starved it
   // (more than 5 % of the 33 ms releases skipped by overruns, as under ctest -j2 with ASan),
   // the peer's rate says nothing about rovctl: then it is reported, not asserted, and what is
-  // asserted is that each tick rovctl did run sent its MANUAL_CONTROL (one per tick).
+  // asserted is that the ticks rovctl did run sent their MANUAL_CONTROL.
   const sched = /scheduler: (\d+) ticks of [\d.]+ ms, \d+ overrun ticks, (\d+) skipped releases/.exec(run.stderr());
   const ticks = sched ? +sched[1] : 0;
   const skipped = sched ? +sched[2] : 0;
@@ -139,7 +139,9 @@ async function finish(run, what) {
   } else {
     const sent = manuals(run.peer, run.armedAt.t_ms).length;
     console.log(`NOTE: rate not judged, the machine starved rovctl (${(100 * skippedShare).toFixed(0)} % of releases skipped): ${figures}`);
-    expect(sent >= ticks - 2, `one MANUAL_CONTROL per tick while starved (${sent} received, ${ticks} ticks)`);
+    // The I/O thread sends only the newest command and drops one older than 66 ms: a starved
+    // thread may skip a few, hence 90 %.
+    expect(sent >= 0.9 * ticks, `a MANUAL_CONTROL per tick while starved (${sent} received, ${ticks} ticks, at least 90 %)`);
   }
 }
 
