@@ -1,7 +1,9 @@
-// `rovctl check`: pre-flight. One line per check (config, calibration, camera, thruster bus,
-// estimator); exit 0 when all pass, 2 when any fails. Nothing is armed.
+// `rovctl check`: pre-flight. One line per check (config, calibration, camera, thruster bus and,
+// on ArduSub, its failsafe parameters); exit 0 when all pass, 2 when any fails. Nothing is armed.
+#include <array>
 #include <chrono>
 #include <iostream>
+#include <optional>
 #include <thread>
 
 #include "app/cli/cli_args.hpp"
@@ -9,6 +11,8 @@
 #include "app/runtime/app_config.hpp"
 #include "app/runtime/errors.hpp"
 #include "app/runtime/vehicle_backends.hpp"
+#include "drivers/mavlink/ardusub_failsafe_params.hpp"
+#include "drivers/mavlink/ardusub_thruster_bus.hpp"
 
 namespace rovctl::app {
 namespace {
@@ -22,6 +26,20 @@ struct Checker {
     if (!ok) ++failures;
   }
 };
+
+// ArduSub's own failsafes are what stops the vehicle when rovctl dies: each one read back, with
+// whether its value is safe for rovctl (drivers/mavlink/ardusub_failsafe_params).
+void check_ardusub_failsafes(Checker& check, drivers::ArdusubThrusterBus& bus,
+                             const drivers::ArdusubParams& params) {
+  std::array<std::optional<float>, 3> values;
+  for (std::size_t i = 0; i < values.size(); ++i) {
+    values[i] = bus.read_parameter(drivers::kArdusubFailsafeParams[i]);
+  }
+  for (const drivers::ArdusubFailsafeVerdict& v :
+       drivers::judge_ardusub_failsafes(params, values)) {
+    check.line(v.safe, "ArduSub " + v.name, v.reason);
+  }
+}
 
 }  // namespace
 
@@ -96,6 +114,9 @@ int command_check(const Words& words) {
                hw.bus->name() + ": " +
                    (status == hal::BusStatus::fault ? "not answering" : "answering") + ", " +
                    std::to_string(config.vehicle.thrusters.thrusters.size()) + " thrusters");
+    if (auto* ardusub = dynamic_cast<drivers::ArdusubThrusterBus*>(hw.bus)) {
+      check_ardusub_failsafes(check, *ardusub, config.thruster_bus.ardusub);
+    }
     hw.bus->close();
   } else {
     check.line(false, "thruster bus", error);

@@ -35,6 +35,12 @@ class ArdusubSensors final : public hal::Sensors {
   // has sent anything. No allocation, no lock.
   bool read(hal::SensorReadings& readings) override;
 
+  // On the thread that calls accept(): attitude and depth have each arrived once, so the first
+  // tick after arming finds them (the bus waits for this in open()).
+  bool has_attitude_and_depth() const {
+    return building_.readings.attitude_valid && building_.readings.depth_valid;
+  }
+
   const ArdusubSensorParams& params() const { return params_; }
   std::uint64_t published() const { return slot_.published(); }
 

@@ -114,6 +114,7 @@ void ArdusubThrusterBus::pump() {
     if (sensors_ != nullptr) sensors_->accept(f);
     mavlink::Heartbeat hb;
     mavlink::CommandAck ack;
+    mavlink::ParamValue value;
     if (f.header.component_id == params_.vehicle_component_id && mavlink::unpack(f, hb)) {
       ++counters_.heartbeats_received;
       heartbeat_seen_ = true;
@@ -131,6 +132,10 @@ void ArdusubThrusterBus::pump() {
         arm_result_ = ack.result;
         ++arm_acks_;
       }
+    } else if (awaited_param_[0] != '\0' && mavlink::unpack(f, value) &&
+               value.param_id == awaited_param_) {
+      param_value_ = value.param_value;
+      param_answered_ = true;
     }
   }
   if (opened_ &&
@@ -164,6 +169,20 @@ bool ArdusubThrusterBus::open(std::string& error) {
   }
   if (!send_manual_control(ArdusubAxes{}) || !request_streams()) {
     error = name() + ": cannot send the neutral MANUAL_CONTROL or the stream requests";
+    close();
+    return false;
+  }
+  // Armed before the requested streams arrive, the first ticks would find no readings and trip
+  // the sensors-lost failsafe (latched): wait for them here, at start-up, as for the HEARTBEAT.
+  const auto streams_deadline = Clock::now() + std::chrono::milliseconds(params_.link_timeout_ms);
+  while (sensors_ != nullptr && !sensors_->has_attitude_and_depth() &&
+         Clock::now() < streams_deadline) {
+    std::this_thread::sleep_for(kPollStep);
+    pump();
+  }
+  if (sensors_ != nullptr && !sensors_->has_attitude_and_depth()) {
+    error = name() + ": no ATTITUDE_QUATERNION and SCALED_PRESSURE2 from ArduSub within " +
+            std::to_string(params_.link_timeout_ms) + " ms of requesting them";
     close();
     return false;
   }
@@ -219,6 +238,28 @@ hal::BusStatus ArdusubThrusterBus::arm(bool armed) {
   }
   armed_ = true;
   return status();
+}
+
+std::optional<float> ArdusubThrusterBus::read_parameter(std::string_view id) {
+  if (!opened_) return std::nullopt;
+  mavlink::ParamRequestRead request;
+  request.param_index = -1;  // by name
+  request.target_system = static_cast<std::uint8_t>(params_.vehicle_system_id);
+  request.target_component = static_cast<std::uint8_t>(params_.vehicle_component_id);
+  mavlink::set_text(request.param_id, id);
+  awaited_param_ = request.param_id;
+  param_answered_ = false;
+  for (int attempt = 0; attempt < 3 && !param_answered_; ++attempt) {
+    if (!send(request)) break;
+    const auto deadline = Clock::now() + std::chrono::milliseconds(params_.ack_timeout_ms);
+    while (!param_answered_ && Clock::now() < deadline) {
+      std::this_thread::sleep_for(kPollStep);
+      pump();
+    }
+  }
+  awaited_param_ = {};
+  if (!param_answered_) return std::nullopt;
+  return param_value_;
 }
 
 ArdusubFault ArdusubThrusterBus::fault() const {

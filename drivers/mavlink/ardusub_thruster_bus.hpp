@@ -7,7 +7,9 @@
 #include <chrono>
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <string>
+#include <string_view>
 
 #include "drivers/mavlink/ardusub_params.hpp"
 #include "drivers/mavlink/ardusub_sensors.hpp"
@@ -41,7 +43,8 @@ class ArdusubThrusterBus final : public hal::ThrusterBus {
   ArdusubThrusterBus(const ArdusubThrusterBus&) = delete;
   ArdusubThrusterBus& operator=(const ArdusubThrusterBus&) = delete;
 
-  // Opens the socket and waits (start-up, at most link_timeout_ms) for ArduSub's HEARTBEAT.
+  // Opens the socket and waits (start-up, at most link_timeout_ms) for ArduSub's HEARTBEAT, then
+  // with sensors attached (at most link_timeout_ms more) for their attitude and depth.
   bool open(std::string& error) override;
   // Sends neutral, then ARM_DISARM, and waits at most ack_timeout_ms for its COMMAND_ACK. Runs
   // on the bus I/O thread (BusIoThread), never on the tick. Arming needs the link and the
@@ -57,6 +60,11 @@ class ArdusubThrusterBus final : public hal::ThrusterBus {
   // Before open(): ArduSub's telemetry goes to `sensors` (which outlives this bus) from the I/O
   // thread that owns the socket, and open() requests its streams (SET_MESSAGE_INTERVAL).
   void attach(ArdusubSensors& sensors) { sensors_ = &sensors; }
+
+  // After open(), not from the tick (`rovctl check`): ArduSub's parameter `id` by
+  // PARAM_REQUEST_READ, answered by PARAM_VALUE; waits ack_timeout_ms per try, 3 tries (UDP);
+  // none when ArduSub does not answer.
+  std::optional<float> read_parameter(std::string_view id);
 
   std::uint16_t local_port() const { return link_.local_port(); }
   ArdusubFault fault() const;
@@ -99,6 +107,9 @@ class ArdusubThrusterBus final : public hal::ThrusterBus {
   bool disarmed_under_us_ = false;
   bool mode_changed_ = false;
   bool arm_refused_ = false;
+  std::array<char, 16> awaited_param_{};  // read_parameter()'s id while it waits
+  bool param_answered_ = false;
+  float param_value_ = 0.0F;
   std::uint64_t arm_acks_ = 0;  // COMMAND_ACKs of ARM_DISARM
   std::uint8_t arm_result_ = 0;
   ArdusubCounters counters_;

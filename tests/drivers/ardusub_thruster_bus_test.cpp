@@ -256,6 +256,30 @@ TEST(ArdusubThrusterBus, FeedsAttachedSensorsAndRequestsTheirStreams) {
   EXPECT_EQ(requested, (std::vector<std::uint32_t>{31, 137, 1}));
 }
 
+// Armed before the streams arrive, the first tick would find no readings: open() waits for them
+// and fails, naming them, when ArduSub beats but never streams.
+TEST(ArdusubThrusterBus, OpenWithSensorsWaitsForAttitudeAndDepth) {
+  FakeArduSub peer;  // beats, does not stream
+  SteadyClock clock;
+  ArdusubSensors sensors(ArdusubSensorParams{}, clock);
+  ArdusubParams params = params_for(peer);
+  params.link_timeout_ms = 1100;
+  ArdusubThrusterBus bus(params, hal::ThrusterLayout::bluerov2_heavy());
+  bus.attach(sensors);
+  std::string error;
+  EXPECT_FALSE(bus.open(error));
+  EXPECT_NE(error.find("ATTITUDE_QUATERNION and SCALED_PRESSURE2"), std::string::npos) << error;
+
+  peer.streaming = true;
+  ArdusubThrusterBus streamed(params, hal::ThrusterLayout::bluerov2_heavy());
+  ArdusubSensors fed(ArdusubSensorParams{}, clock);
+  streamed.attach(fed);
+  ASSERT_TRUE(streamed.open(error)) << error;
+  hal::SensorReadings r;
+  ASSERT_TRUE(fed.read(r));  // the first tick after open() has its readings
+  EXPECT_TRUE(r.attitude_valid && r.depth_valid);
+}
+
 TEST(ArdusubThrusterBus, WriteAndReadAllocateNothing) {
   if (!rovctl::testing::malloc_hooks_installed()) GTEST_SKIP() << "no malloc hooks under ASan";
   FakeArduSub peer;
