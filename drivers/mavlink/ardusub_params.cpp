@@ -22,14 +22,33 @@ void describe(hal::ParamVisitor& v, ArdusubAxisScale& p) {
           {"N*m", 0.1, 1000.0, "clockwise (from above) torque at MANUAL_CONTROL r = 1000, gain 1"});
 }
 
+void describe(hal::ParamVisitor& v, ArdusubRcOverrideParams& p) {
+  hal::param_list(
+      v, "channels", "RC channel of each thruster (all or none; none: thruster i on channel i + 1)",
+      p.channels, 0, 8, [](hal::ParamVisitor& e, ArdusubRcChannel& c) {
+        e.param("thruster", c.thruster, "thruster name from vehicle.thrusters", {}, true);
+        e.param("channel", c.channel,
+                {"-", 1, 16,
+                 "RC_CHANNELS_OVERRIDE channel; its output needs SERVOn_FUNCTION = "
+                 "RCIN<channel> (50 + channel)",
+                 true});
+        e.param("reversed", c.reversed,
+                "the ESC turns the thruster's negative direction above neutral PWM");
+      });
+  v.param("pwm_min_us", p.pwm_min_us, {"us", 1000, 1500, "PWM at full reverse thrust"});
+  v.param("pwm_neutral_us", p.pwm_neutral_us, {"us", 1400, 1600, "PWM at which the ESC stops"});
+  v.param("pwm_max_us", p.pwm_max_us, {"us", 1500, 2000, "PWM at full forward thrust"});
+}
+
 void describe(hal::ParamVisitor& v, ArdusubParams& p) {
   v.param("link", p.link,
           "MAVLink endpoint: udpin:ADDR:PORT listens (a BlueOS endpoint sending to us), "
           "udpout:ADDR:PORT sends to ArduSub");
   v.param("mode", p.mode,
           "wrench: the servo's body wrench as MANUAL_CONTROL x, y, z, r (ArduSub allocates and "
-          "levels)",
-          {"wrench"});
+          "levels); thrusters: rovctl's allocation as PWM in RC_CHANNELS_OVERRIDE (outputs set "
+          "to RC passthrough, ArduSub's mixer and stabilise bypassed)",
+          {"wrench", "thrusters"});
   v.param("gcs_system_id", p.gcs_system_id,
           {"-", 1, 255, "system id rovctl sends as; ArduSub takes control only from SYSID_MYGCS"});
   v.param("gcs_component_id", p.gcs_component_id,
@@ -45,6 +64,8 @@ void describe(hal::ParamVisitor& v, ArdusubParams& p) {
           {"-", 0.1, 1.0, "ArduSub's joystick gain (JS_GAIN_DEFAULT), scales every axis"});
   v.section("scale", "force and torque at full stick, pilot gain 1 (wrench mode)",
             [&p](hal::ParamVisitor& s) { describe(s, p.scale); });
+  v.section("rc_override", "thruster PWM channels and range (thrusters mode)",
+            [&p](hal::ParamVisitor& s) { describe(s, p.rc_override); });
   v.param("link_timeout_ms", p.link_timeout_ms,
           {"ms", 1100, 30000,
            "no ArduSub HEARTBEAT (sent at 1 Hz) for this long is link lost: a bus fault"});

@@ -1,5 +1,6 @@
-// ThrusterBus on ArduSub over MAVLink (wrench mode): the allocator's fractions leave as one
-// MANUAL_CONTROL per command from the GCS id ArduSub obeys, arming is MAV_CMD_COMPONENT_ARM_DISARM
+// ThrusterBus on ArduSub over MAVLink: the allocator's fractions leave as one MANUAL_CONTROL
+// (wrench mode) or one RC_CHANNELS_OVERRIDE (thrusters mode) per command from the GCS id ArduSub
+// obeys, arming is MAV_CMD_COMPONENT_ARM_DISARM
 // with its COMMAND_ACK, and ArduSub's HEARTBEAT is the bus's health (link, armed, mode). It owns
 // the link, so it also feeds ArduSub's sensors (ArdusubSensors) when they are attached.
 #pragma once
@@ -10,6 +11,7 @@
 #include <string>
 
 #include "drivers/mavlink/ardusub_params.hpp"
+#include "drivers/mavlink/ardusub_rc_override_map.hpp"
 #include "drivers/mavlink/ardusub_sensors.hpp"
 #include "drivers/mavlink/ardusub_wrench_map.hpp"
 #include "drivers/mavlink/mavlink_codec.hpp"
@@ -26,6 +28,7 @@ const char* to_string(ArdusubFault f);
 
 struct ArdusubCounters {
   std::uint64_t manual_control_sent = 0;
+  std::uint64_t rc_override_sent = 0;
   std::uint64_t heartbeats_sent = 0;
   std::uint64_t heartbeats_received = 0;  // from ArduSub (vehicle system and component id)
   std::uint64_t acks_received = 0;
@@ -62,13 +65,19 @@ class ArdusubThrusterBus final : public hal::ThrusterBus {
   ArdusubFault fault() const;
   const ArdusubCounters& counters() const { return counters_; }
   bool armed() const { return armed_; }
-  // The axes of the last MANUAL_CONTROL sent.
+  // The axes of the last MANUAL_CONTROL sent (wrench mode).
   const ArdusubAxes& last_axes() const { return last_axes_; }
+  // The last RC_CHANNELS_OVERRIDE sent (thrusters mode).
+  const mavlink::RcChannelsOverride& last_rc_override() const { return last_rc_override_; }
 
  private:
   using Clock = std::chrono::steady_clock;
   void pump();
   bool send_manual_control(const ArdusubAxes& axes);
+  bool send_rc_override(const mavlink::RcChannelsOverride& m);
+  // The command in the configured mode (neutral while disarmed).
+  bool send_command(const hal::ThrusterCommand& command);
+  bool send_neutral();
   bool send_heartbeat();
   bool send_arm(bool armed, Clock::duration wait);
   template <typename Message>
@@ -78,7 +87,9 @@ class ArdusubThrusterBus final : public hal::ThrusterBus {
   bool request_streams();
 
   ArdusubParams params_;
+  bool thrusters_mode_ = false;
   ArdusubWrenchMap map_;
+  ArdusubRcOverrideMap rc_map_;
   ArdusubSensors* sensors_ = nullptr;
   mavlink::UdpEndpoint endpoint_;
   int required_mode_ = 0;
@@ -90,6 +101,7 @@ class ArdusubThrusterBus final : public hal::ThrusterBus {
   bool armed_ = false;
   bool send_failed_ = false;
   ArdusubAxes last_axes_;
+  mavlink::RcChannelsOverride last_rc_override_;
 
   bool heartbeat_seen_ = false;
   Clock::time_point last_heartbeat_{};
