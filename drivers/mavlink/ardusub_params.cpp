@@ -40,6 +40,22 @@ void describe(hal::ParamVisitor& v, ArdusubRcOverrideParams& p) {
   v.param("pwm_max_us", p.pwm_max_us, {"us", 1500, 2000, "PWM at full forward thrust"});
 }
 
+void describe(hal::ParamVisitor& v, GcsStatusParams& p) {
+  v.param("enabled", p.enabled,
+          "send rovctl's HEARTBEAT, STATUSTEXT and NAMED_VALUE_FLOAT to the ground station");
+  v.param("system_id", p.system_id,
+          {"-", 1, 255,
+           "system id of the status; the vehicle's (SYSID_THISMAV) so ground "
+           "stations show its STATUSTEXT with the vehicle's"});
+  v.param("component_id", p.component_id,
+          {"-", 1, 255, "component id of the status (191: MAV_COMP_ID_ONBOARD_COMPUTER)"});
+  v.param("heartbeat_period_ms", p.heartbeat_period_ms,
+          {"ms", 100, 5000, "period of the status HEARTBEAT (MAV_TYPE_ONBOARD_CONTROLLER)"});
+  v.param("values_period_ms", p.values_period_ms,
+          {"ms", 50, 5000,
+           "period of the NAMED_VALUE_FLOATs rov_state, rov_fit, rov_dist_m, rov_lat_m"});
+}
+
 void describe(hal::ParamVisitor& v, ArdusubParams& p) {
   v.param("link", p.link,
           "MAVLink endpoint: udpin:ADDR:PORT listens (a BlueOS endpoint sending to us), "
@@ -66,6 +82,8 @@ void describe(hal::ParamVisitor& v, ArdusubParams& p) {
             [&p](hal::ParamVisitor& s) { describe(s, p.scale); });
   v.section("rc_override", "thruster PWM channels and range (thrusters mode)",
             [&p](hal::ParamVisitor& s) { describe(s, p.rc_override); });
+  v.section("gcs_status", "rovctl's status to the ground station on the same link",
+            [&p](hal::ParamVisitor& s) { describe(s, p.gcs_status); });
   v.param("link_timeout_ms", p.link_timeout_ms,
           {"ms", 1100, 30000,
            "no ArduSub HEARTBEAT (sent at 1 Hz) for this long is link lost: a bus fault"});

@@ -36,6 +36,17 @@ struct ArdusubRcOverrideParams {
   int pwm_max_us = 1900;                   // full forward
 };
 
+// rovctl's own status to the ground station (Cockpit, QGroundControl) on ArduSub's link.
+struct GcsStatusParams {
+  bool enabled = true;
+  // A component of the vehicle's system: ground stations show a vehicle's STATUSTEXT by its
+  // system id, and 191 is MAV_COMP_ID_ONBOARD_COMPUTER.
+  int system_id = 1;
+  int component_id = 191;
+  int heartbeat_period_ms = 1000;  // HEARTBEAT as MAV_TYPE_ONBOARD_CONTROLLER
+  int values_period_ms = 250;      // the NAMED_VALUE_FLOATs (state, fitness, distance, lateral)
+};
+
 struct ArdusubParams {
   std::string link = "udpin:0.0.0.0:14660";  // the BlueOS MAVLink endpoint pointed at rovctl
   std::string mode = "wrench";   // wrench: body wrench as MANUAL_CONTROL; thrusters: RC override
@@ -47,6 +58,7 @@ struct ArdusubParams {
   double pilot_gain = 0.5;                // ArduSub's joystick gain (JS_GAIN_DEFAULT)
   ArdusubAxisScale scale;
   ArdusubRcOverrideParams rc_override;
+  GcsStatusParams gcs_status;
   int link_timeout_ms = 2500;      // no ArduSub HEARTBEAT (1 Hz) for this long: link lost
   int heartbeat_period_ms = 1000;  // our own HEARTBEAT as the GCS
   int ack_timeout_ms = 300;        // wait for COMMAND_ACK of arm/disarm (on the I/O thread)
@@ -65,6 +77,7 @@ int ardusub_custom_mode(const std::string& flight_mode);
 
 void describe(hal::ParamVisitor& v, ArdusubAxisScale& p);
 void describe(hal::ParamVisitor& v, ArdusubRcOverrideParams& p);
+void describe(hal::ParamVisitor& v, GcsStatusParams& p);
 void describe(hal::ParamVisitor& v, ArdusubParams& p);
 void describe(hal::ParamVisitor& v, ArdusubSensorParams& p);
 

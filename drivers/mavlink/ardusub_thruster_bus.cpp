@@ -66,7 +66,9 @@ ArdusubThrusterBus::ArdusubThrusterBus(const ArdusubParams& params,
       required_mode_(required_mode(params.flight_mode)),
       writer_(static_cast<std::uint8_t>(params.gcs_system_id),
               static_cast<std::uint8_t>(params.gcs_component_id)),
-      thruster_count_(layout.thrusters.size()) {}
+      thruster_count_(layout.thrusters.size()) {
+  if (params.gcs_status.enabled) gcs_ = std::make_unique<GcsStatus>(params.gcs_status);
+}
 
 ArdusubThrusterBus::~ArdusubThrusterBus() { close(); }
 
@@ -159,6 +161,16 @@ void ArdusubThrusterBus::pump() {
   if (opened_ &&
       now - last_heartbeat_sent_ >= std::chrono::milliseconds(params_.heartbeat_period_ms)) {
     (void)send_heartbeat();
+  }
+  if (opened_ && gcs_) {
+    // Its own ids and sequence: only the socket is shared. At most a few frames per call.
+    for (std::size_t n = gcs_->next_frame(now.time_since_epoch(), frame_); n > 0;
+         n = gcs_->next_frame(now.time_since_epoch(), frame_)) {
+      if (link_.send(std::span<const std::uint8_t>(frame_.data(), n)) !=
+          mavlink::MavlinkUdpLink::Io::ok) {
+        ++counters_.send_failures;
+      }
+    }
   }
 }
 

@@ -8,12 +8,14 @@
 #include <chrono>
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <string>
 
 #include "drivers/mavlink/ardusub_params.hpp"
 #include "drivers/mavlink/ardusub_rc_override_map.hpp"
 #include "drivers/mavlink/ardusub_sensors.hpp"
 #include "drivers/mavlink/ardusub_wrench_map.hpp"
+#include "drivers/mavlink/gcs_status.hpp"
 #include "drivers/mavlink/mavlink_codec.hpp"
 #include "drivers/mavlink/mavlink_messages.hpp"
 #include "drivers/mavlink/mavlink_udp_link.hpp"
@@ -61,6 +63,10 @@ class ArdusubThrusterBus final : public hal::ThrusterBus {
   // thread that owns the socket, and open() requests its streams (SET_MESSAGE_INTERVAL).
   void attach(ArdusubSensors& sensors) { sensors_ = &sensors; }
 
+  // rovctl's status to the ground station (null when gcs_status.enabled is false): fed by the
+  // tick and the event logger, framed and sent by whichever thread runs this bus's I/O.
+  GcsStatus* gcs_status() { return gcs_.get(); }
+
   std::uint16_t local_port() const { return link_.local_port(); }
   ArdusubFault fault() const;
   const ArdusubCounters& counters() const { return counters_; }
@@ -91,6 +97,7 @@ class ArdusubThrusterBus final : public hal::ThrusterBus {
   ArdusubWrenchMap map_;
   ArdusubRcOverrideMap rc_map_;
   ArdusubSensors* sensors_ = nullptr;
+  std::unique_ptr<GcsStatus> gcs_;
   mavlink::UdpEndpoint endpoint_;
   int required_mode_ = 0;
   mavlink::MavlinkUdpLink link_;
