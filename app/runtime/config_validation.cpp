@@ -9,6 +9,7 @@
 #include "app/runtime/app_config.hpp"
 #include "app/runtime/errors.hpp"
 #include "control/control_allocation_pseudo_inverse.hpp"
+#include "drivers/mavlink/ardusub_rc_override_map.hpp"
 #include "drivers/mavlink/mavlink_udp_link.hpp"
 #include "estimator/stereo_calibration.hpp"
 
@@ -269,6 +270,14 @@ void validate_app_config(AppConfig& config) {
       throw ConfigError(config_location(config, "thruster_bus.ardusub.ack_timeout_ms") +
                         ": must be below thruster_bus.timing.close_timeout_ms (the I/O thread "
                         "answers the final disarm within it)");
+    }
+    // The channel map and PWM range are checked where they are used; here with file:line.
+    try {
+      const drivers::ArdusubRcOverrideMap map(config.vehicle.thrusters, a.rc_override);
+    } catch (const std::invalid_argument& e) {
+      const std::string key = "thruster_bus.ardusub.rc_override";
+      const std::string where = config_location(config, key);
+      throw ConfigError(where.substr(0, where.size() - key.size()) + e.what());
     }
   }
   check_thrusters(config);

@@ -6,7 +6,9 @@
 #include <iostream>
 
 #include "app/runtime/errors.hpp"
+#include "app/runtime/gcs_event_text.hpp"
 #include "app/runtime/realtime_setup.hpp"
+#include "drivers/mavlink/ardusub_thruster_bus.hpp"
 
 namespace rovctl::app {
 namespace {
@@ -48,6 +50,12 @@ Vehicle::Vehicle(const AppConfig& config, const hal::StereoRig& rig, VehicleBack
       std::make_unique<VehicleLoop>(config, rig, *backends_.camera, *bus_, backends_.sensors,
                                     *scheduler_, telemetry_on ? &ring_ : nullptr, options_.seed);
   loop_->attach_operator(options_.operator_link);
+  // ArduSub's link also carries rovctl's status to the ground station: the tick posts its
+  // values, the event logger its texts, the thread running the bus frames and sends them.
+  if (auto* ardusub = dynamic_cast<drivers::ArdusubThrusterBus*>(backends_.real_bus.get())) {
+    gcs_ = ardusub->gcs_status();
+    loop_->attach_gcs(gcs_);
+  }
 }
 
 Vehicle::~Vehicle() {
@@ -133,11 +141,18 @@ void Vehicle::start_helpers() {
   logger_ = std::thread([this]() {
     make_thread_non_realtime();
     LoopEvent e;
+    const auto log = [this](const LoopEvent& event) {
+      std::cerr << options_.log_prefix << format_event(event) << "\n";
+      if (gcs_ != nullptr) {
+        const GcsEventText t = gcs_event_text(event);
+        (void)gcs_->post_text(t.severity, t.text());
+      }
+    };
     while (logging_.load()) {
-      while (loop_->pop_event(e)) std::cerr << options_.log_prefix << format_event(e) << "\n";
+      while (loop_->pop_event(e)) log(e);
       std::this_thread::sleep_for(kLoggerPeriod);
     }
-    while (loop_->pop_event(e)) std::cerr << options_.log_prefix << format_event(e) << "\n";
+    while (loop_->pop_event(e)) log(e);
   });
 }
 

@@ -74,6 +74,8 @@ class Vehicle {
 
   // The real bus's I/O thread (null when the bus is the mock's), for its statistics.
   const BusIoThread* bus_io() const { return bus_io_.get(); }
+  // rovctl's status to the ground station (ArduSub bus only), else null.
+  drivers::GcsStatus* gcs_status() { return gcs_; }
 
   // The thread table of this vehicle as configured.
   std::vector<ThreadSpec> threads() const;
@@ -97,6 +99,7 @@ class Vehicle {
   std::unique_ptr<CyclicScheduler> scheduler_;
   TelemetryRing ring_;
   std::unique_ptr<VehicleLoop> loop_;
+  drivers::GcsStatus* gcs_ = nullptr;  // the ArduSub bus's, when it sends status
   std::unique_ptr<TelemetryWriter> writer_;
   std::thread logger_;
   std::atomic<bool> logging_{false};

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 
 #include "hal/model/docking_station.hpp"
 
@@ -358,6 +359,17 @@ bool VehicleLoop::tick(const TickInfo& info) {
       e.failsafe_kind = fe.kind;
       e.tick = fe.tick;
       queue(e);
+    }
+    if (gcs_ != nullptr) {
+      constexpr float kNaNf = std::numeric_limits<float>::quiet_NaN();
+      drivers::GcsValues v;
+      v.mission_state = static_cast<float>(out.state);
+      v.fitness = have_images ? static_cast<float>(estimate_.fitness) : kNaNf;
+      v.distance_m =
+          have_images ? static_cast<float>(estimate_.T_cl_marker.translation().norm()) : kNaNf;
+      v.lateral_error_m = out.errors_valid ? static_cast<float>(out.lateral_error_m) : kNaNf;
+      v.failsafe = failsafe_.tripped();
+      gcs_->post_values(v);
     }
     if (telemetry_ != nullptr || operator_link_ != nullptr) {
       fill_schedule_fields(rec, info, scheduler_);

@@ -21,6 +21,7 @@
 #include "control/mission.hpp"
 #include "control/pd_visual_servo.hpp"
 #include "control/thruster_health.hpp"
+#include "drivers/mavlink/gcs_status.hpp"
 #include "estimator/pose_estimator.hpp"
 #include "hal/interfaces/sensors.hpp"
 #include "hal/interfaces/stereo_camera.hpp"
@@ -75,6 +76,9 @@ class VehicleLoop {
   // mission from SEARCH). Before the first tick; may be null.
   void attach_operator(OperatorLink* link) { operator_link_ = link; }
   bool operator_hold() const { return operator_hold_; }
+  // The ground station's status (ArduSub's link): each tick posts its values there, lock-free.
+  // Before the first tick; may be null.
+  void attach_gcs(drivers::GcsStatus* gcs) { gcs_ = gcs; }
   // Starts held: neutral until the operator's START (a mission begun from the ground station).
   void hold_for_operator() { operator_hold_ = true; }
 
@@ -105,6 +109,7 @@ class VehicleLoop {
   CyclicScheduler& scheduler_;
   TelemetryRing* telemetry_;
   OperatorLink* operator_link_ = nullptr;
+  drivers::GcsStatus* gcs_ = nullptr;
 
   estimator::PoseEstimator estimator_;
   control::PdVisualServo servo_;

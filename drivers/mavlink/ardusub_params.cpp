@@ -22,14 +22,49 @@ void describe(hal::ParamVisitor& v, ArdusubAxisScale& p) {
           {"N*m", 0.1, 1000.0, "clockwise (from above) torque at MANUAL_CONTROL r = 1000, gain 1"});
 }
 
+void describe(hal::ParamVisitor& v, ArdusubRcOverrideParams& p) {
+  hal::param_list(
+      v, "channels", "RC channel of each thruster (all or none; none: thruster i on channel i + 1)",
+      p.channels, 0, 8, [](hal::ParamVisitor& e, ArdusubRcChannel& c) {
+        e.param("thruster", c.thruster, "thruster name from vehicle.thrusters", {}, true);
+        e.param("channel", c.channel,
+                {"-", 1, 16,
+                 "RC_CHANNELS_OVERRIDE channel; its output needs SERVOn_FUNCTION = "
+                 "RCIN<channel> (50 + channel)",
+                 true});
+        e.param("reversed", c.reversed,
+                "the ESC turns the thruster's negative direction above neutral PWM");
+      });
+  v.param("pwm_min_us", p.pwm_min_us, {"us", 1000, 1500, "PWM at full reverse thrust"});
+  v.param("pwm_neutral_us", p.pwm_neutral_us, {"us", 1400, 1600, "PWM at which the ESC stops"});
+  v.param("pwm_max_us", p.pwm_max_us, {"us", 1500, 2000, "PWM at full forward thrust"});
+}
+
+void describe(hal::ParamVisitor& v, GcsStatusParams& p) {
+  v.param("enabled", p.enabled,
+          "send rovctl's HEARTBEAT, STATUSTEXT and NAMED_VALUE_FLOAT to the ground station");
+  v.param("system_id", p.system_id,
+          {"-", 1, 255,
+           "system id of the status; the vehicle's (SYSID_THISMAV) so ground "
+           "stations show its STATUSTEXT with the vehicle's"});
+  v.param("component_id", p.component_id,
+          {"-", 1, 255, "component id of the status (191: MAV_COMP_ID_ONBOARD_COMPUTER)"});
+  v.param("heartbeat_period_ms", p.heartbeat_period_ms,
+          {"ms", 100, 5000, "period of the status HEARTBEAT (MAV_TYPE_ONBOARD_CONTROLLER)"});
+  v.param("values_period_ms", p.values_period_ms,
+          {"ms", 50, 5000,
+           "period of the NAMED_VALUE_FLOATs rov_state, rov_fit, rov_dist_m, rov_lat_m"});
+}
+
 void describe(hal::ParamVisitor& v, ArdusubParams& p) {
   v.param("link", p.link,
           "MAVLink endpoint: udpin:ADDR:PORT listens (a BlueOS endpoint sending to us), "
           "udpout:ADDR:PORT sends to ArduSub");
   v.param("mode", p.mode,
           "wrench: the servo's body wrench as MANUAL_CONTROL x, y, z, r (ArduSub allocates and "
-          "levels)",
-          {"wrench"});
+          "levels); thrusters: rovctl's allocation as PWM in RC_CHANNELS_OVERRIDE (outputs set "
+          "to RC passthrough, ArduSub's mixer and stabilise bypassed)",
+          {"wrench", "thrusters"});
   v.param("gcs_system_id", p.gcs_system_id,
           {"-", 1, 255, "system id rovctl sends as; ArduSub takes control only from SYSID_MYGCS"});
   v.param("gcs_component_id", p.gcs_component_id,
@@ -45,6 +80,10 @@ void describe(hal::ParamVisitor& v, ArdusubParams& p) {
           {"-", 0.1, 1.0, "ArduSub's joystick gain (JS_GAIN_DEFAULT), scales every axis"});
   v.section("scale", "force and torque at full stick, pilot gain 1 (wrench mode)",
             [&p](hal::ParamVisitor& s) { describe(s, p.scale); });
+  v.section("rc_override", "thruster PWM channels and range (thrusters mode)",
+            [&p](hal::ParamVisitor& s) { describe(s, p.rc_override); });
+  v.section("gcs_status", "rovctl's status to the ground station on the same link",
+            [&p](hal::ParamVisitor& s) { describe(s, p.gcs_status); });
   v.param("link_timeout_ms", p.link_timeout_ms,
           {"ms", 1100, 30000,
            "no ArduSub HEARTBEAT (sent at 1 Hz) for this long is link lost: a bus fault"});

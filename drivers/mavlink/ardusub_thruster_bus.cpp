@@ -1,5 +1,6 @@
-// ArduSub thruster bus: MANUAL_CONTROL per command, ARM_DISARM with its acknowledgement, and the
-// vehicle's HEARTBEAT watched for link loss, a disarm or a mode change we did not ask for.
+// ArduSub thruster bus: MANUAL_CONTROL or RC_CHANNELS_OVERRIDE per command, ARM_DISARM with its
+// acknowledgement, and the vehicle's HEARTBEAT watched for link loss, a disarm or a mode change we
+// did not ask for.
 #include "drivers/mavlink/ardusub_thruster_bus.hpp"
 
 #include <stdexcept>
@@ -58,12 +59,16 @@ const char* to_string(ArdusubFault f) {
 ArdusubThrusterBus::ArdusubThrusterBus(const ArdusubParams& params,
                                        const hal::ThrusterLayout& layout)
     : params_(params),
+      thrusters_mode_(params.mode == "thrusters"),
       map_(layout, params.scale, params.pilot_gain),
+      rc_map_(layout, params.rc_override),
       endpoint_(parse_link(params.link)),
       required_mode_(required_mode(params.flight_mode)),
       writer_(static_cast<std::uint8_t>(params.gcs_system_id),
               static_cast<std::uint8_t>(params.gcs_component_id)),
-      thruster_count_(layout.thrusters.size()) {}
+      thruster_count_(layout.thrusters.size()) {
+  if (params.gcs_status.enabled) gcs_ = std::make_unique<GcsStatus>(params.gcs_status);
+}
 
 ArdusubThrusterBus::~ArdusubThrusterBus() { close(); }
 
@@ -104,6 +109,26 @@ bool ArdusubThrusterBus::send_manual_control(const ArdusubAxes& axes) {
   return ok;
 }
 
+bool ArdusubThrusterBus::send_rc_override(const mavlink::RcChannelsOverride& m) {
+  last_rc_override_ = m;
+  last_rc_override_.target_system = static_cast<std::uint8_t>(params_.vehicle_system_id);
+  last_rc_override_.target_component = static_cast<std::uint8_t>(params_.vehicle_component_id);
+  const bool ok = send(last_rc_override_);
+  if (ok) ++counters_.rc_override_sent;
+  return ok;
+}
+
+bool ArdusubThrusterBus::send_command(const hal::ThrusterCommand& command) {
+  if (thrusters_mode_) return send_rc_override(rc_map_.message(command, armed_));
+  return send_manual_control(armed_ ? map_.axes(command) : ArdusubAxes{});
+}
+
+bool ArdusubThrusterBus::send_neutral() {
+  // MANUAL_CONTROL also writes channels 1-6: in thrusters mode it would fight the override.
+  if (thrusters_mode_) return send_rc_override(rc_map_.neutral());
+  return send_manual_control(ArdusubAxes{});
+}
+
 void ArdusubThrusterBus::pump() {
   const auto now = Clock::now();
   for (int i = 0; i < kMaxFramesPerPump; ++i) {
@@ -142,6 +167,16 @@ void ArdusubThrusterBus::pump() {
       now - last_heartbeat_sent_ >= std::chrono::milliseconds(params_.heartbeat_period_ms)) {
     (void)send_heartbeat();
   }
+  if (opened_ && gcs_) {
+    // Its own ids and sequence: only the socket is shared. At most a few frames per call.
+    for (std::size_t n = gcs_->next_frame(now.time_since_epoch(), frame_); n > 0;
+         n = gcs_->next_frame(now.time_since_epoch(), frame_)) {
+      if (link_.send(std::span<const std::uint8_t>(frame_.data(), n)) !=
+          mavlink::MavlinkUdpLink::Io::ok) {
+        ++counters_.send_failures;
+      }
+    }
+  }
 }
 
 bool ArdusubThrusterBus::open(std::string& error) {
@@ -167,8 +202,8 @@ bool ArdusubThrusterBus::open(std::string& error) {
     close();
     return false;
   }
-  if (!send_manual_control(ArdusubAxes{}) || !request_streams()) {
-    error = name() + ": cannot send the neutral MANUAL_CONTROL or the stream requests";
+  if (!send_neutral() || !request_streams()) {
+    error = name() + ": cannot send the neutral command or the stream requests";
     close();
     return false;
   }
@@ -223,7 +258,7 @@ hal::BusStatus ArdusubThrusterBus::arm(bool armed) {
   const auto wait = std::chrono::milliseconds(params_.ack_timeout_ms);
   if (!armed) {
     armed_ = false;
-    const bool neutral = send_manual_control(ArdusubAxes{});
+    const bool neutral = send_neutral();
     return neutral && send_arm(false, wait) ? hal::BusStatus::ok : hal::BusStatus::fault;
   }
   // Arming clears what the last arming's watch found; a refusal is a fault until the next try.
@@ -231,8 +266,8 @@ hal::BusStatus ArdusubThrusterBus::arm(bool armed) {
   mode_changed_ = false;
   arm_refused_ = false;
   if (status() == hal::BusStatus::fault) return hal::BusStatus::fault;
-  if (vehicle_mode_ != static_cast<std::uint32_t>(required_mode_) ||
-      !send_manual_control(ArdusubAxes{}) || !send_arm(true, wait)) {
+  if (vehicle_mode_ != static_cast<std::uint32_t>(required_mode_) || !send_neutral() ||
+      !send_arm(true, wait)) {
     arm_refused_ = true;
     return hal::BusStatus::fault;
   }
@@ -281,7 +316,7 @@ hal::BusStatus ArdusubThrusterBus::status() {
 hal::BusStatus ArdusubThrusterBus::write(const hal::ThrusterCommand& command) {
   if (!opened_) return hal::BusStatus::fault;
   pump();
-  send_failed_ = !send_manual_control(armed_ ? map_.axes(command) : ArdusubAxes{});
+  send_failed_ = !send_command(command);
   return status();
 }
 
@@ -298,7 +333,7 @@ void ArdusubThrusterBus::close() {
   if (opened_ && link_.is_open()) {
     // Best effort on every way out: neutral first, then the disarm with a bounded wait.
     armed_ = false;
-    (void)send_manual_control(ArdusubAxes{});
+    (void)send_neutral();
     (void)send_arm(false, std::chrono::milliseconds(params_.ack_timeout_ms));
   }
   opened_ = false;

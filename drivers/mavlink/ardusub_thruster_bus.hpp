@@ -1,5 +1,6 @@
-// ThrusterBus on ArduSub over MAVLink (wrench mode): the allocator's fractions leave as one
-// MANUAL_CONTROL per command from the GCS id ArduSub obeys, arming is MAV_CMD_COMPONENT_ARM_DISARM
+// ThrusterBus on ArduSub over MAVLink: the allocator's fractions leave as one MANUAL_CONTROL
+// (wrench mode) or one RC_CHANNELS_OVERRIDE (thrusters mode) per command from the GCS id ArduSub
+// obeys, arming is MAV_CMD_COMPONENT_ARM_DISARM
 // with its COMMAND_ACK, and ArduSub's HEARTBEAT is the bus's health (link, armed, mode). It owns
 // the link, so it also feeds ArduSub's sensors (ArdusubSensors) when they are attached.
 #pragma once
@@ -7,13 +8,16 @@
 #include <chrono>
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <string>
 #include <string_view>
 
 #include "drivers/mavlink/ardusub_params.hpp"
+#include "drivers/mavlink/ardusub_rc_override_map.hpp"
 #include "drivers/mavlink/ardusub_sensors.hpp"
 #include "drivers/mavlink/ardusub_wrench_map.hpp"
+#include "drivers/mavlink/gcs_status.hpp"
 #include "drivers/mavlink/mavlink_codec.hpp"
 #include "drivers/mavlink/mavlink_messages.hpp"
 #include "drivers/mavlink/mavlink_udp_link.hpp"
@@ -28,6 +32,7 @@ const char* to_string(ArdusubFault f);
 
 struct ArdusubCounters {
   std::uint64_t manual_control_sent = 0;
+  std::uint64_t rc_override_sent = 0;
   std::uint64_t heartbeats_sent = 0;
   std::uint64_t heartbeats_received = 0;  // from ArduSub (vehicle system and component id)
   std::uint64_t acks_received = 0;
@@ -66,17 +71,27 @@ class ArdusubThrusterBus final : public hal::ThrusterBus {
   // none when ArduSub does not answer.
   std::optional<float> read_parameter(std::string_view id);
 
+  // rovctl's status to the ground station (null when gcs_status.enabled is false): fed by the
+  // tick and the event logger, framed and sent by whichever thread runs this bus's I/O.
+  GcsStatus* gcs_status() { return gcs_.get(); }
+
   std::uint16_t local_port() const { return link_.local_port(); }
   ArdusubFault fault() const;
   const ArdusubCounters& counters() const { return counters_; }
   bool armed() const { return armed_; }
-  // The axes of the last MANUAL_CONTROL sent.
+  // The axes of the last MANUAL_CONTROL sent (wrench mode).
   const ArdusubAxes& last_axes() const { return last_axes_; }
+  // The last RC_CHANNELS_OVERRIDE sent (thrusters mode).
+  const mavlink::RcChannelsOverride& last_rc_override() const { return last_rc_override_; }
 
  private:
   using Clock = std::chrono::steady_clock;
   void pump();
   bool send_manual_control(const ArdusubAxes& axes);
+  bool send_rc_override(const mavlink::RcChannelsOverride& m);
+  // The command in the configured mode (neutral while disarmed).
+  bool send_command(const hal::ThrusterCommand& command);
+  bool send_neutral();
   bool send_heartbeat();
   bool send_arm(bool armed, Clock::duration wait);
   template <typename Message>
@@ -86,8 +101,11 @@ class ArdusubThrusterBus final : public hal::ThrusterBus {
   bool request_streams();
 
   ArdusubParams params_;
+  bool thrusters_mode_ = false;
   ArdusubWrenchMap map_;
+  ArdusubRcOverrideMap rc_map_;
   ArdusubSensors* sensors_ = nullptr;
+  std::unique_ptr<GcsStatus> gcs_;
   mavlink::UdpEndpoint endpoint_;
   int required_mode_ = 0;
   mavlink::MavlinkUdpLink link_;
@@ -98,6 +116,7 @@ class ArdusubThrusterBus final : public hal::ThrusterBus {
   bool armed_ = false;
   bool send_failed_ = false;
   ArdusubAxes last_axes_;
+  mavlink::RcChannelsOverride last_rc_override_;
 
   bool heartbeat_seen_ = false;
   Clock::time_point last_heartbeat_{};

@@ -8,6 +8,7 @@
 #include <atomic>
 #include <chrono>
 #include <functional>
+#include <limits>
 #include <mutex>
 #include <thread>
 #include <vector>
@@ -68,6 +69,7 @@ TEST(ArdusubThrusterBus, OpenWaitsForArduSubThenSendsNeutralAsTheGcs) {
     return false;
   }));
   for (const Received& x : peer.received()) {
+    if (x.header.system_id == 1 && x.header.component_id == 191) continue;  // the GCS status
     EXPECT_EQ(x.header.system_id, 255);
     EXPECT_EQ(x.header.component_id, 190);
     if (x.is_manual) {
@@ -278,6 +280,95 @@ TEST(ArdusubThrusterBus, OpenWithSensorsWaitsForAttitudeAndDepth) {
   hal::SensorReadings r;
   ASSERT_TRUE(fed.read(r));  // the first tick after open() has its readings
   EXPECT_TRUE(r.attitude_valid && r.depth_valid);
+}
+
+ArdusubParams thrusters_mode(const FakeArduSub& peer) {
+  ArdusubParams p = params_for(peer);
+  p.mode = "thrusters";
+  return p;
+}
+
+bool saw_rc_channel(const std::vector<Received>& r, std::size_t channel, std::uint16_t us) {
+  for (const Received& m : r) {
+    if (m.is_rc_override && m.rc_override.channels_us[channel] == us) return true;
+  }
+  return false;
+}
+
+TEST(ArdusubThrusterBus, ThrustersModeSendsEachFractionAsPwmOnlyWhileArmed) {
+  FakeArduSub peer;
+  ArdusubThrusterBus bus(thrusters_mode(peer), hal::ThrusterLayout::bluerov2_heavy());
+  std::string error;
+  ASSERT_TRUE(bus.open(error)) << error;
+  EXPECT_EQ(bus.write(all_forward(0.5)), hal::BusStatus::ok);
+  EXPECT_EQ(bus.last_rc_override().channels_us[0], 1500);  // disarmed: neutral
+
+  ASSERT_EQ(bus.arm(true), hal::BusStatus::ok);
+  hal::ThrusterCommand c = all_forward(0.5);
+  c.thrust_fraction[4] = -0.25;
+  EXPECT_EQ(bus.write(c), hal::BusStatus::ok);
+  ASSERT_TRUE(peer.wait_for([](const auto& r) { return saw_rc_channel(r, 4, 1400); }));
+  for (const Received& m : peer.received()) {
+    EXPECT_FALSE(m.is_manual) << "MANUAL_CONTROL would overwrite channels 1-6";
+    if (!m.is_rc_override || m.rc_override.channels_us[4] != 1400) continue;
+    EXPECT_EQ(m.header.system_id, 255);
+    EXPECT_EQ(m.header.component_id, 190);
+    EXPECT_EQ(m.rc_override.target_system, 1);
+    EXPECT_EQ(m.rc_override.target_component, 1);
+    for (std::size_t i = 0; i < 4; ++i) EXPECT_EQ(m.rc_override.channels_us[i], 1700) << i;
+    for (std::size_t i = 5; i < 8; ++i) EXPECT_EQ(m.rc_override.channels_us[i], 1500) << i;
+    for (std::size_t i = 8; i < 18; ++i) EXPECT_EQ(m.rc_override.channels_us[i], 0) << i;
+  }
+  c.thrust_fraction[2] = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_EQ(bus.write(c), hal::BusStatus::ok);
+  for (std::size_t i = 0; i < 8; ++i) EXPECT_EQ(bus.last_rc_override().channels_us[i], 1500);
+}
+
+TEST(ArdusubThrusterBus, ThrustersModeCloseSendsNeutralPwmThenDisarm) {
+  FakeArduSub peer;
+  {
+    ArdusubThrusterBus bus(thrusters_mode(peer), hal::ThrusterLayout::bluerov2_heavy());
+    std::string error;
+    ASSERT_TRUE(bus.open(error)) << error;
+    ASSERT_EQ(bus.arm(true), hal::BusStatus::ok);
+    ASSERT_EQ(bus.write(all_forward(0.5)), hal::BusStatus::ok);
+    ASSERT_TRUE(peer.wait_for([](const auto& r) { return saw_rc_channel(r, 0, 1700); }));
+  }  // the destructor closes
+  EXPECT_FALSE(peer.armed);
+  const std::vector<Received> r = peer.received();
+  std::size_t last_rc = r.size();
+  std::size_t last_disarm = r.size();
+  for (std::size_t i = 0; i < r.size(); ++i) {
+    if (r[i].is_rc_override) last_rc = i;
+    if (r[i].is_command && r[i].command.command == mav::kCmdComponentArmDisarm &&
+        r[i].command.params[0] == 0.0F) {
+      last_disarm = i;
+    }
+  }
+  ASSERT_LT(last_rc, r.size());
+  ASSERT_LT(last_disarm, r.size());
+  EXPECT_LT(last_rc, last_disarm);
+  for (std::size_t i = 0; i < 8; ++i) EXPECT_EQ(r[last_rc].rc_override.channels_us[i], 1500);
+}
+
+TEST(ArdusubThrusterBus, ThrustersModeWriteAllocatesNothing) {
+  if (!rovctl::testing::malloc_hooks_installed()) GTEST_SKIP() << "no malloc hooks under ASan";
+  FakeArduSub peer;
+  ArdusubThrusterBus bus(thrusters_mode(peer), hal::ThrusterLayout::bluerov2_heavy());
+  std::string error;
+  ASSERT_TRUE(bus.open(error)) << error;
+  ASSERT_EQ(bus.arm(true), hal::BusStatus::ok);
+  const hal::ThrusterCommand c = all_forward(0.3);
+  hal::ThrusterTelemetry t;
+  const std::uint64_t sent_before = bus.counters().rc_override_sent;
+  const std::uint64_t before = rovctl::testing::t_allocations;
+  for (int i = 0; i < 50; ++i) {
+    (void)bus.write(c);
+    (void)bus.read(t);
+    std::this_thread::sleep_for(1ms);
+  }
+  EXPECT_EQ(rovctl::testing::t_allocations - before, 0U);
+  EXPECT_EQ(bus.counters().rc_override_sent - sent_before, 50U);
 }
 
 TEST(ArdusubThrusterBus, WriteAndReadAllocateNothing) {

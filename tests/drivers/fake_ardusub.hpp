@@ -24,7 +24,9 @@ struct Received {
   mav::FrameHeader header;
   mav::ManualControl manual;
   mav::CommandLong command;
+  mav::RcChannelsOverride rc_override;
   bool is_manual = false;
+  bool is_rc_override = false;
   bool is_command = false;
   bool is_heartbeat = false;
 };
@@ -85,6 +87,7 @@ class FakeArduSub {
         mav::Heartbeat hb;
         r.is_manual = mav::unpack(f, r.manual);
         r.is_command = mav::unpack(f, r.command);
+        r.is_rc_override = mav::unpack(f, r.rc_override);
         r.is_heartbeat = mav::unpack(f, hb);
         if (r.is_command && r.command.command == mav::kCmdComponentArmDisarm) {
           const bool accept = !refuse_arm || r.command.params[0] == 0.0F;

@@ -146,6 +146,25 @@ TEST(ConfigValidation, TheArdusubLinkAndAckTimeoutAreCheckedAtTheirLine) {
   EXPECT_EQ(error_of(fine), "");
 }
 
+TEST(ConfigValidation, TheArdusubChannelMapIsCheckedAtItsLine) {
+  const TempDir t;
+  const std::string f = t.write("rc.yaml", "calibration: " + kCalibration +
+                                               "\nthruster_bus:\n  backend: ardusub\n"
+                                               "  ardusub:\n    mode: thrusters\n"
+                                               "    rc_override:\n      channels:\n"
+                                               "        - {thruster: nowhere, channel: 3}\n");
+  EXPECT_EQ(error_of(f).rfind(f + ":6: thruster_bus.ardusub.rc_override.channels: 1 given for ", 0),
+            0U)
+      << error_of(f);
+  const std::string range =
+      t.write("pwm.yaml", "calibration: " + kCalibration +
+                              "\nthruster_bus:\n  backend: ardusub\n"
+                              "  ardusub:\n    rc_override:\n      pwm_min_us: 1500\n");
+  EXPECT_EQ(error_of(range), range +
+                                 ":5: thruster_bus.ardusub.rc_override.pwm_neutral_us: must lie "
+                                 "between pwm_min_us and pwm_max_us");
+}
+
 TEST(ConfigValidation, ArdusubSensorsNeedTheArdusubBus) {
   const TempDir t;
   const std::string f =

@@ -1,0 +1,48 @@
+// The loop's events as the ground station's STATUSTEXT: severities by kind, within 50 chars.
+#include "app/runtime/gcs_event_text.hpp"
+
+#include <gtest/gtest.h>
+
+namespace rovctl::app {
+namespace {
+
+TEST(GcsEventText, MissionTransitionIsInfoIntoAbortAWarning) {
+  LoopEvent e;
+  e.from = control::MissionState::search;
+  e.to = control::MissionState::approach;
+  e.reason = "marker seen";
+  GcsEventText t = gcs_event_text(e);
+  EXPECT_EQ(t.severity, 6);
+  EXPECT_EQ(t.text(), "rovctl: search -> approach: marker seen");
+  e.to = control::MissionState::abort;
+  e.reason = "a reason far too long for the fifty characters a STATUSTEXT has";
+  t = gcs_event_text(e);
+  EXPECT_EQ(t.severity, 4);
+  EXPECT_EQ(t.text().size(), 50U);
+  EXPECT_EQ(t.text().substr(0, 24), "rovctl: search -> abort:");
+}
+
+TEST(GcsEventText, FailsafeTripLatchAndRecovery) {
+  LoopEvent e;
+  e.failsafe = true;
+  e.cause = control::FailsafeCause::vision_lost;
+  e.action = control::SafeAction::neutral;
+  e.failsafe_kind = control::FailsafeEventKind::trip;
+  GcsEventText t = gcs_event_text(e);
+  EXPECT_EQ(t.severity, 4);
+  EXPECT_NE(t.text().find("FAILSAFE"), std::string_view::npos);
+  EXPECT_NE(t.text().find(control::to_string(e.cause)), std::string_view::npos);
+  e.failsafe_kind = control::FailsafeEventKind::latched;
+  EXPECT_EQ(gcs_event_text(e).severity, 2);
+  e.failsafe_kind = control::FailsafeEventKind::trip;
+  e.action = control::SafeAction::disarm;
+  EXPECT_EQ(gcs_event_text(e).severity, 2);
+  e.failsafe_kind = control::FailsafeEventKind::recovered;
+  t = gcs_event_text(e);
+  EXPECT_EQ(t.severity, 5);
+  EXPECT_NE(t.text().find("recovered"), std::string_view::npos);
+  EXPECT_LE(t.text().size(), 50U);
+}
+
+}  // namespace
+}  // namespace rovctl::app
