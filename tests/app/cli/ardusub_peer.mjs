@@ -1,6 +1,7 @@
 // A fake ArduSub written with node-mavlink (npm), independent of rovctl's codec: it beats as
 // system 1 component 1, acknowledges ARM_DISARM, streams what SET_MESSAGE_INTERVAL asks for,
-// answers PARAM_REQUEST_READ, and checks every datagram rovctl sends (one frame per datagram).
+// answers PARAM_REQUEST_READ, and checks every datagram rovctl sends (one frame per datagram):
+// control from 255/190 (the GCS id ArduSub obeys), status to the ground station from 1/191.
 import dgram from "node:dgram";
 
 export async function loadMavlink() {
@@ -29,7 +30,7 @@ export class FakeArduSub {
     this.seq = 0;
     this.errors = [];        // every malformed or unexpected datagram, with why
     this.log = [];           // { t_ms, id, msg } of every valid message from rovctl
-    this.lastRovctlSeq = -1;
+    this.lastSeq = new Map();  // "sys/comp" -> last sequence number: each sender counts its own
     this.intervals = new Map();  // message id -> timer
     this.peer = null;        // rovctl's address, learnt from its first datagram
     this.listeners = [];
@@ -98,11 +99,12 @@ export class FakeArduSub {
     if (buf.length !== 12 + len) return bad(`datagram ${buf.length} bytes, frame says ${12 + len}`);
     if (buf[2] !== 0 || buf[3] !== 0) return bad(`flags ${buf[2]}/${buf[3]}`);
     const seq = buf[4];
-    if (this.lastRovctlSeq >= 0 && seq !== ((this.lastRovctlSeq + 1) & 0xff)) {
-      bad(`sequence ${seq} after ${this.lastRovctlSeq}`);
-    }
-    this.lastRovctlSeq = seq;
-    if (buf[5] !== 255 || buf[6] !== 190) bad(`from ${buf[5]}/${buf[6]}, not 255/190`);
+    const sender = `${buf[5]}/${buf[6]}`;
+    const last = this.lastSeq.get(sender);
+    if (last !== undefined && seq !== ((last + 1) & 0xff)) bad(`${sender}: sequence ${seq} after ${last}`);
+    this.lastSeq.set(sender, seq);
+    const from = sender === "255/190" ? "control" : sender === "1/191" ? "status" : null;
+    if (!from) bad(`from ${sender}, neither 255/190 (control) nor 1/191 (status)`);
     const id = buf.readUIntLE(7, 3);
     const clazz = this.registry[id];
     if (!clazz) return bad(`unknown message id ${id}`);
@@ -110,9 +112,10 @@ export class FakeArduSub {
     const crc = this.m.x25crc(buf, 1, 2, clazz.MAGIC_NUMBER);
     if (crc !== buf.readUInt16LE(10 + len)) return bad(`${clazz.MSG_NAME}: CRC mismatch`);
     const msg = this.protocol.data(this.protocol.payload(buf), clazz);
-    const entry = { t_ms: t, id, name: clazz.MSG_NAME, msg };
+    const entry = { t_ms: t, id, name: clazz.MSG_NAME, msg, from };
     this.log.push(entry);
-    this.handle(entry, first);
+    if (from === "status") this.checkStatus(entry);
+    else this.handle(entry, first);
     this.listeners = this.listeners.filter((l) => !l(entry));
   }
 
@@ -156,6 +159,22 @@ export class FakeArduSub {
     }
   }
 
+  // rovctl's status to the ground station: what Cockpit or QGroundControl would show.
+  checkStatus({ id, name, msg }) {
+    const bad = (why) => this.errors.push(`status ${name}: ${why}`);
+    if (id === this.m.minimal.Heartbeat.MSG_ID) {
+      if (msg.type !== 18) bad(`type ${msg.type}, not MAV_TYPE_ONBOARD_CONTROLLER (18)`);
+      if (msg.autopilot !== 8) bad(`autopilot ${msg.autopilot}, not MAV_AUTOPILOT_INVALID (8)`);
+    } else if (id === this.m.common.StatusText.MSG_ID) {
+      if (msg.severity > 7) bad(`severity ${msg.severity}`);
+      if (!msg.text || msg.text.length > 50) bad(`text of ${msg.text ? msg.text.length : 0} chars`);
+    } else if (id === this.m.common.NamedValueFloat.MSG_ID) {
+      if (!STATUS_VALUES.includes(msg.name)) bad(`name "${msg.name}"`);
+    } else {
+      bad("not a status message");
+    }
+  }
+
   ack(command) {
     this.send(Object.assign(new this.m.common.CommandAck(), {
       command, result: 0, progress: 0, resultParam2: 0, targetSystem: 255, targetComponent: 190 }));
@@ -186,4 +205,6 @@ export class FakeArduSub {
 }
 
 // True when a MANUAL_CONTROL is neutral: no force on any axis (z 500 is neutral throttle).
+// The NAMED_VALUE_FLOAT names rovctl sends (<= 10 chars, MAVLink's limit).
+export const STATUS_VALUES = ["rov_state", "rov_fit", "rov_dist_m", "rov_lat_m"];
 export const isNeutral = (mc) => mc.x === 0 && mc.y === 0 && mc.r === 0 && mc.z === 500;

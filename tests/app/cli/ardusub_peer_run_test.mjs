@@ -1,11 +1,13 @@
 // `rovctl run` on the ArduSub bus and sensors against a fake ArduSub written with node-mavlink:
 // ids, lengths, CRCs, 255/190 -> 1/1, axis ranges, the 30 Hz rate, neutral + disarm on SIGTERM,
-// and safe within 2 ticks when the peer's HEARTBEAT stops or it reports itself disarmed.
+// and safe within 2 ticks when the peer's HEARTBEAT stops or it reports itself disarmed; and the
+// status to the ground station (1/191): HEARTBEAT at 1 Hz, the four values at 4 Hz, a STATUSTEXT
+// naming each failsafe.
 // Usage: node ardusub_peer_run_test.mjs ROVCTL SOURCE_DIR WORK_DIR   (exit 77: skipped)
 import { spawn } from "node:child_process";
 import fs from "node:fs";
 import path from "node:path";
-import { FakeArduSub, isNeutral, loadMavlink } from "./ardusub_peer.mjs";
+import { FakeArduSub, isNeutral, loadMavlink, STATUS_VALUES } from "./ardusub_peer.mjs";
 
 const [rovctl, sourceDir, workDir] = process.argv.slice(2);
 const mavlink = await loadMavlink();
@@ -99,8 +101,8 @@ async function finish(run, what) {
   if (result.code === "timeout") run.child.kill("SIGKILL");
   run.peer.stop();
   expect(run.peer.errors.length === 0,
-         `${what}: every datagram a valid v2 frame from 255/190 with a known id, its length and CRC, ` +
-         `in sequence, addressed to 1/1, axes in range${run.peer.errors.length ? " — " + run.peer.errors.slice(0, 5).join("; ") : ""}`);
+         `${what}: every datagram a valid v2 frame, control from 255/190 and status from 1/191, a known id, ` +
+         `its length and CRC, each sender in sequence, addressed to 1/1, axes in range${run.peer.errors.length ? " — " + run.peer.errors.slice(0, 5).join("; ") : ""}`);
   return result;
 }
 
@@ -114,6 +116,17 @@ async function finish(run, what) {
   rateFigures = { medianHz: 1000 / median(gaps), meanHz: 1000 * gaps.length / (mc[300].t_ms - mc[0].t_ms),
                   maxGapMs: Math.max(...gaps) };
   expect(mc.some((e) => !isNeutral(e.msg)), "the armed vehicle commands forces (not only neutral)");
+  // The status, over the same 300 ticks (about 10 s): 1 Hz and 4 Hz, within a loaded machine's slack.
+  const statusSpanS = (mc[300].t_ms - mc[0].t_ms) / 1000;
+  const status = run.peer.log.filter((e) => e.from === "status" && e.t_ms >= mc[0].t_ms && e.t_ms <= mc[300].t_ms);
+  const beats = status.filter((e) => e.name === "HEARTBEAT").length;
+  expect(beats >= Math.floor(statusSpanS) - 1 && beats <= Math.ceil(statusSpanS) + 1,
+         `status HEARTBEAT from 1/191 (onboard controller) at 1 Hz: ${beats} in ${statusSpanS.toFixed(1)} s`);
+  for (const name of STATUS_VALUES) {
+    const n = status.filter((e) => e.name === "NAMED_VALUE_FLOAT" && e.msg.name === name).length;
+    expect(n >= 3 * statusSpanS && n <= 5 * statusSpanS,
+           `status NAMED_VALUE_FLOAT ${name} at about 4 Hz: ${n} in ${statusSpanS.toFixed(1)} s`);
+  }
   const sigtermAt = run.peer.now();
   const result = await finish(run, "SIGTERM run");
   const after = run.peer.log.filter((e) => e.t_ms >= sigtermAt);
@@ -173,6 +186,10 @@ async function safeWithin2Ticks(name, what, trigger, triggerMs, delayMs, expectL
          `first neutral ${lateMs.toFixed(1)} ms after it; ${fromEarliest} counted from the beat's send time) ` +
          `and neutral from then on`);
   expect(expectLog.test(run.stderr()), `${what}: rovctl logged the failsafe (${expectLog})`);
+  const told = run.peer.log.find((e) => e.from === "status" && e.name === "STATUSTEXT" && e.t_ms > t0 - 100 &&
+                                        /FAILSAFE/.test(e.msg.text));
+  expect(told && told.msg.severity <= 4,
+         `${what}: the ground station told (STATUSTEXT${told ? ` "${told.msg.text}", severity ${told.msg.severity}` : " missing"})`);
   expect(result.code === 1, `${what}: rovctl run exits 1 after a failsafe trip (got ${result.code})`);
 }
 
