@@ -53,6 +53,7 @@ class BusIoThread final : public hal::ThrusterBus {
   // acknowledgement, then stops the thread and closes the bus. Idempotent.
   void close() override;
   std::string name() const override { return name_; }
+  const char* fault_reason() const override { return bus_.fault_reason(); }
 
   // After close(): whether the final neutral and disarm were acknowledged in time.
   bool safe_acknowledged() const { return safe_acknowledged_; }

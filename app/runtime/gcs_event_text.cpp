@@ -26,8 +26,10 @@ GcsEventText gcs_event_text(const LoopEvent& e) {
   } else if (e.failsafe) {
     const bool latched = e.failsafe_kind == control::FailsafeEventKind::latched;
     t.severity = latched || e.action == control::SafeAction::disarm ? sev::critical : sev::warning;
-    std::snprintf(b, n, "rovctl: FAILSAFE %s%s -> %s", control::to_string(e.cause),
-                  latched ? " latched" : "", control::to_string(e.action));
+    // The bus's own reason (e.g. "ArduSub link lost") says more than its cause, in 50 chars.
+    std::snprintf(b, n, "rovctl: FAILSAFE %s%s -> %s",
+                  *e.reason ? e.reason : control::to_string(e.cause), latched ? " latched" : "",
+                  control::to_string(e.action));
   } else {
     const bool bad = e.to == control::MissionState::abort || e.to == control::MissionState::failed;
     t.severity = bad ? sev::warning : sev::info;

@@ -38,12 +38,14 @@ std::string format_event(const LoopEvent& e) {
     std::snprintf(line, sizeof(line), "%9.3f s  FAILSAFE %s recovered (tick %llu)", t,
                   control::to_string(e.cause), static_cast<unsigned long long>(e.tick));
   } else if (e.failsafe && e.failsafe_kind == control::FailsafeEventKind::latched) {
-    std::snprintf(line, sizeof(line), "%9.3f s  FAILSAFE %s latched -> %s (tick %llu)", t,
-                  control::to_string(e.cause), control::to_string(e.action),
+    std::snprintf(line, sizeof(line), "%9.3f s  FAILSAFE %s%s%s%s latched -> %s (tick %llu)", t,
+                  control::to_string(e.cause), *e.reason ? " (" : "", e.reason,
+                  *e.reason ? ")" : "", control::to_string(e.action),
                   static_cast<unsigned long long>(e.tick));
   } else if (e.failsafe) {
-    std::snprintf(line, sizeof(line), "%9.3f s  FAILSAFE %s -> %s (tick %llu)", t,
-                  control::to_string(e.cause), control::to_string(e.action),
+    std::snprintf(line, sizeof(line), "%9.3f s  FAILSAFE %s%s%s%s -> %s (tick %llu)", t,
+                  control::to_string(e.cause), *e.reason ? " (" : "", e.reason,
+                  *e.reason ? ")" : "", control::to_string(e.action),
                   static_cast<unsigned long long>(e.tick));
   } else {
     std::snprintf(line, sizeof(line), "%9.3f s  mission %s -> %s (%s, aborts %d)", t,
@@ -358,6 +360,11 @@ bool VehicleLoop::tick(const TickInfo& info) {
       e.action = fe.action;
       e.failsafe_kind = fe.kind;
       e.tick = fe.tick;
+      if (fe.cause == control::FailsafeCause::bus_fault &&
+          fe.kind != control::FailsafeEventKind::recovered) {
+        const char* why = bus_.fault_reason();
+        if (why != nullptr) e.reason = why;
+      }
       queue(e);
     }
     if (gcs_ != nullptr) {

@@ -42,7 +42,9 @@ struct LoopEvent {
   control::SafeAction action = control::SafeAction::none;
   control::FailsafeEventKind failsafe_kind = control::FailsafeEventKind::trip;
   std::uint64_t tick = 0;   // the loop's tick count when it happened (failsafes, thrusters)
-  const char* reason = "";  // static string
+  // Static string: why a mission transition happened, or why the bus reported a fault (its
+  // fault_reason(), empty when it does not say).
+  const char* reason = "";
   int aborts = 0;
   // A thruster failed and was removed from the allocation (thruster >= 0: its layout index).
   int thruster = -1;

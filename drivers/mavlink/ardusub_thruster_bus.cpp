@@ -45,13 +45,13 @@ const char* to_string(ArdusubFault f) {
     case ArdusubFault::none:
       return "none";
     case ArdusubFault::link_lost:
-      return "link lost (no ArduSub HEARTBEAT)";
+      return "ArduSub link lost";
     case ArdusubFault::disarmed_under_us:
       return "ArduSub disarmed";
     case ArdusubFault::mode_changed:
-      return "ArduSub changed mode";
+      return "ArduSub mode changed";
     case ArdusubFault::arm_refused:
-      return "ArduSub refused to arm";
+      return "ArduSub refused arm";
   }
   return "?";
 }
@@ -309,7 +309,12 @@ ArdusubFault ArdusubThrusterBus::fault() const {
 }
 
 hal::BusStatus ArdusubThrusterBus::status() {
-  if (!opened_ || fault() != ArdusubFault::none) return hal::BusStatus::fault;
+  if (!opened_) return hal::BusStatus::fault;
+  const ArdusubFault f = fault();
+  if (f != ArdusubFault::none) {
+    fault_reason_.store(to_string(f), std::memory_order_relaxed);
+    return hal::BusStatus::fault;
+  }
   return send_failed_ ? hal::BusStatus::degraded : hal::BusStatus::ok;
 }
 

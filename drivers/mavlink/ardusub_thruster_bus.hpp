@@ -5,6 +5,7 @@
 // the link, so it also feeds ArduSub's sensors (ArdusubSensors) when they are attached.
 #pragma once
 
+#include <atomic>
 #include <chrono>
 #include <cstddef>
 #include <cstdint>
@@ -77,6 +78,10 @@ class ArdusubThrusterBus final : public hal::ThrusterBus {
 
   std::uint16_t local_port() const { return link_.local_port(); }
   ArdusubFault fault() const;
+  // The last fault status() reported, told apart (link lost, disarmed, mode, arm refused).
+  const char* fault_reason() const override {
+    return fault_reason_.load(std::memory_order_relaxed);
+  }
   const ArdusubCounters& counters() const { return counters_; }
   bool armed() const { return armed_; }
   // The axes of the last MANUAL_CONTROL sent (wrench mode).
@@ -126,6 +131,8 @@ class ArdusubThrusterBus final : public hal::ThrusterBus {
   bool disarmed_under_us_ = false;
   bool mode_changed_ = false;
   bool arm_refused_ = false;
+  // Written where status() runs (the bus I/O thread), read by the tick.
+  std::atomic<const char*> fault_reason_{nullptr};
   std::array<char, 16> awaited_param_{};  // read_parameter()'s id while it waits
   bool param_answered_ = false;
   float param_value_ = 0.0F;

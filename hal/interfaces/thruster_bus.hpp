@@ -41,6 +41,9 @@ class ThrusterBus {
   // Neutral, disarm and release the device; safe to call more than once.
   virtual void close() = 0;
   virtual std::string name() const = 0;
+  // Why the bus last reported `fault`, for the log and the ground station: a static string, or
+  // null when the bus does not tell its faults apart. Safe to call from the tick.
+  virtual const char* fault_reason() const { return nullptr; }
 };
 
 }  // namespace rovctl::hal

@@ -200,11 +200,11 @@ await safeWithin2Ticks("heartbeat", "HEARTBEAT stops",
                        (peer) => { peer.beating = false; return peer.lastHeartbeatMs; },
                        async (peer, last) => (await peer.waitFor((e) => e.name === "MANUAL_CONTROL" && e.t_ms > last,
                                                                  5000, "the MANUAL_CONTROL after the last HEARTBEAT")).t_ms + LINK_TIMEOUT_MS,
-                       LINK_TIMEOUT_MS, /FAILSAFE thruster bus fault/);
+                       LINK_TIMEOUT_MS, /FAILSAFE thruster bus fault \(ArduSub link lost\)/);
 // 3. The peer reports disarmed (base_mode without SAFETY_ARMED): the 2 ticks count from that beat.
 await safeWithin2Ticks("disarmed", "ArduSub reports disarmed",
                        (peer) => { peer.armed = false; peer.sendHeartbeat(); return peer.lastHeartbeatMs; },
-                       async (peer, sent) => sent, 0, /FAILSAFE thruster bus fault/);
+                       async (peer, sent) => sent, 0, /FAILSAFE thruster bus fault \(ArduSub disarmed\)/);
 
 console.log(failures === 0 ? "PASS" : `FAIL: ${failures} check(s)`);
 process.exit(failures === 0 ? 0 : 1);

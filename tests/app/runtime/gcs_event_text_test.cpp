@@ -44,5 +44,24 @@ TEST(GcsEventText, FailsafeTripLatchAndRecovery) {
   EXPECT_LE(t.text().size(), 50U);
 }
 
+// A bus that tells its faults apart (ArduSub) names the fault instead of the cause, within 50
+// chars; the log line keeps both.
+TEST(GcsEventText, ABusFaultNamesTheBusReason) {
+  LoopEvent e;
+  e.failsafe = true;
+  e.cause = control::FailsafeCause::bus_fault;
+  e.action = control::SafeAction::disarm;
+  e.reason = "ArduSub link lost";
+  const GcsEventText t = gcs_event_text(e);
+  EXPECT_EQ(t.text(), "rovctl: FAILSAFE ArduSub link lost -> disarm");
+  const std::string line = format_event(e);
+  EXPECT_NE(line.find(std::string("FAILSAFE ") + control::to_string(e.cause) +
+                      " (ArduSub link lost) -> disarm"),
+            std::string::npos)
+      << line;
+  e.reason = "";
+  EXPECT_NE(gcs_event_text(e).text().find(control::to_string(e.cause)), std::string_view::npos);
+}
+
 }  // namespace
 }  // namespace rovctl::app
