@@ -139,6 +139,14 @@ void ArdusubThrusterBus::pump() {
   }
 }
 
+void ArdusubThrusterBus::wait_a_little() {
+  if (wait_hook_) {
+    wait_hook_();
+  } else {
+    std::this_thread::sleep_for(kPollStep);
+  }
+}
+
 bool ArdusubThrusterBus::open(std::string& error) {
   if (thruster_count_ == 0) {
     error = name() + ": no thrusters to drive";
@@ -152,7 +160,7 @@ bool ArdusubThrusterBus::open(std::string& error) {
   const auto deadline = Clock::now() + std::chrono::milliseconds(params_.link_timeout_ms);
   while (!heartbeat_seen_ && Clock::now() < deadline) {
     pump();
-    if (!heartbeat_seen_) std::this_thread::sleep_for(kPollStep);
+    if (!heartbeat_seen_) wait_a_little();
   }
   if (!heartbeat_seen_) {
     error = name() + ": no HEARTBEAT from ArduSub (system " +
@@ -192,7 +200,7 @@ bool ArdusubThrusterBus::send_arm(bool arm, Clock::duration wait) {
   }
   const auto deadline = Clock::now() + wait;
   while (arm_acks_ == acks_before && Clock::now() < deadline) {
-    std::this_thread::sleep_for(kPollStep);
+    wait_a_little();
     pump();
   }
   return arm_acks_ != acks_before && arm_result_ == kMavResultAccepted;

@@ -7,6 +7,7 @@
 #include <chrono>
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <string>
 
 #include "drivers/mavlink/ardusub_params.hpp"
@@ -57,6 +58,10 @@ class ArdusubThrusterBus final : public hal::ThrusterBus {
   // Before open(): ArduSub's telemetry goes to `sensors` (which outlives this bus) from the I/O
   // thread that owns the socket, and open() requests its streams (SET_MESSAGE_INTERVAL).
   void attach(ArdusubSensors& sensors) { sensors_ = &sensors; }
+  // Before open(): called in place of the poll sleep while open() waits for the first HEARTBEAT
+  // and arm() for its COMMAND_ACK, so a peer stepped in the caller's thread (the mock ArduSub of
+  // `rovctl sim`, in virtual time) answers there.
+  void set_wait_hook(std::function<void()> hook) { wait_hook_ = std::move(hook); }
 
   std::uint16_t local_port() const { return link_.local_port(); }
   ArdusubFault fault() const;
@@ -68,6 +73,7 @@ class ArdusubThrusterBus final : public hal::ThrusterBus {
  private:
   using Clock = std::chrono::steady_clock;
   void pump();
+  void wait_a_little();
   bool send_manual_control(const ArdusubAxes& axes);
   bool send_heartbeat();
   bool send_arm(bool armed, Clock::duration wait);
@@ -80,6 +86,7 @@ class ArdusubThrusterBus final : public hal::ThrusterBus {
   ArdusubParams params_;
   ArdusubWrenchMap map_;
   ArdusubSensors* sensors_ = nullptr;
+  std::function<void()> wait_hook_;
   mavlink::UdpEndpoint endpoint_;
   int required_mode_ = 0;
   mavlink::MavlinkUdpLink link_;
