@@ -3,6 +3,7 @@
 
 #include "app/runtime/config_validation.hpp"
 #include "app/runtime/errors.hpp"
+#include "app/runtime/stepped_ardusub_bus.hpp"
 #include "drivers/camera_factory.hpp"
 #include "drivers/mavlink/ardusub_thruster_bus.hpp"
 #include "drivers/monotonic_clock.hpp"
@@ -36,6 +37,35 @@ std::unique_ptr<hal::mock::SimulatedHal> make_sim(const AppConfig& config,
                                                    config.marker, trial);
 }
 
+// Hardware in the loop without a vehicle: rovctl's ArduSub driver against the mock ArduSub, on
+// ports the kernel picks so that parallel trials never collide.
+void fly_through_mock_ardusub(const AppConfig& config, VehicleBackends& b) {
+  const drivers::ArdusubParams& bus_params = config.thruster_bus.ardusub;
+  b.mock_ardusub = std::make_unique<hal::mock::MockArdusub>(b.sim->world(), config.sim.ardusub);
+  // The operator has put ArduSub in the mode rovctl requires before it arms.
+  b.mock_ardusub->set_mode(
+      static_cast<std::uint32_t>(drivers::ardusub_custom_mode(bus_params.flight_mode)));
+  b.ardusub_peer = std::make_unique<MockArdusubEndpoint>(
+      *b.mock_ardusub, *b.clock, bus_params.gcs_system_id, bus_params.vehicle_system_id);
+  std::string error;
+  if (!b.ardusub_peer->open(error)) throw std::runtime_error("mock ArduSub: " + error);
+  drivers::ArdusubParams params = bus_params;
+  params.link = "udpout:127.0.0.1:" + std::to_string(b.ardusub_peer->port());
+  auto bus = std::make_unique<drivers::ArdusubThrusterBus>(params, config.vehicle.thrusters);
+  drivers::ArdusubSensors* sensors = nullptr;
+  if (config.sensors.backend == "ardusub") {
+    auto s = std::make_unique<drivers::ArdusubSensors>(config.sensors.ardusub, *b.clock);
+    sensors = s.get();
+    bus->attach(*s);
+    b.sensors = sensors;
+    b.real_sensors = std::move(s);
+  }
+  bus->set_wait_hook([peer = b.ardusub_peer.get()] { peer->service(); });
+  b.sim_bus = std::make_unique<SteppedArdusubBus>(*bus, *b.ardusub_peer, sensors);
+  b.real_bus = std::move(bus);
+  b.bus = b.sim_bus.get();
+}
+
 }  // namespace
 
 VehicleBackends make_trial_backends(const AppConfig& config, const hal::StereoRig& rig,
@@ -46,6 +76,7 @@ VehicleBackends make_trial_backends(const AppConfig& config, const hal::StereoRi
   b.sensors = &b.sim->sensors();
   b.camera = &b.sim->camera();
   b.bus = &b.sim->bus();
+  if (config.thruster_bus.backend == "ardusub") fly_through_mock_ardusub(config, b);
   return b;
 }
 

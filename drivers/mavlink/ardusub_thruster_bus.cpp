@@ -179,6 +179,14 @@ void ArdusubThrusterBus::pump() {
   }
 }
 
+void ArdusubThrusterBus::wait_a_little() {
+  if (wait_hook_) {
+    wait_hook_();
+  } else {
+    std::this_thread::sleep_for(kPollStep);
+  }
+}
+
 bool ArdusubThrusterBus::open(std::string& error) {
   if (thruster_count_ == 0) {
     error = name() + ": no thrusters to drive";
@@ -192,7 +200,7 @@ bool ArdusubThrusterBus::open(std::string& error) {
   const auto deadline = Clock::now() + std::chrono::milliseconds(params_.link_timeout_ms);
   while (!heartbeat_seen_ && Clock::now() < deadline) {
     pump();
-    if (!heartbeat_seen_) std::this_thread::sleep_for(kPollStep);
+    if (!heartbeat_seen_) wait_a_little();
   }
   if (!heartbeat_seen_) {
     error = name() + ": no HEARTBEAT from ArduSub (system " +
@@ -212,7 +220,7 @@ bool ArdusubThrusterBus::open(std::string& error) {
   const auto streams_deadline = Clock::now() + std::chrono::milliseconds(params_.link_timeout_ms);
   while (sensors_ != nullptr && !sensors_->has_attitude_and_depth() &&
          Clock::now() < streams_deadline) {
-    std::this_thread::sleep_for(kPollStep);
+    wait_a_little();
     pump();
   }
   if (sensors_ != nullptr && !sensors_->has_attitude_and_depth()) {
@@ -246,7 +254,7 @@ bool ArdusubThrusterBus::send_arm(bool arm, Clock::duration wait) {
   }
   const auto deadline = Clock::now() + wait;
   while (arm_acks_ == acks_before && Clock::now() < deadline) {
-    std::this_thread::sleep_for(kPollStep);
+    wait_a_little();
     pump();
   }
   return arm_acks_ != acks_before && arm_result_ == kMavResultAccepted;
@@ -288,7 +296,7 @@ std::optional<float> ArdusubThrusterBus::read_parameter(std::string_view id) {
     if (!send(request)) break;
     const auto deadline = Clock::now() + std::chrono::milliseconds(params_.ack_timeout_ms);
     while (!param_answered_ && Clock::now() < deadline) {
-      std::this_thread::sleep_for(kPollStep);
+      wait_a_little();
       pump();
     }
   }

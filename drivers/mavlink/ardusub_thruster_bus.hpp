@@ -9,6 +9,7 @@
 #include <chrono>
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -66,6 +67,10 @@ class ArdusubThrusterBus final : public hal::ThrusterBus {
   // Before open(): ArduSub's telemetry goes to `sensors` (which outlives this bus) from the I/O
   // thread that owns the socket, and open() requests its streams (SET_MESSAGE_INTERVAL).
   void attach(ArdusubSensors& sensors) { sensors_ = &sensors; }
+  // Before open(): called in place of the poll sleep while open() waits for the first HEARTBEAT
+  // and arm() for its COMMAND_ACK, so a peer stepped in the caller's thread (the mock ArduSub of
+  // `rovctl sim`, in virtual time) answers there.
+  void set_wait_hook(std::function<void()> hook) { wait_hook_ = std::move(hook); }
 
   // After open(), not from the tick (`rovctl check`): ArduSub's parameter `id` by
   // PARAM_REQUEST_READ, answered by PARAM_VALUE; waits ack_timeout_ms per try, 3 tries (UDP);
@@ -92,6 +97,7 @@ class ArdusubThrusterBus final : public hal::ThrusterBus {
  private:
   using Clock = std::chrono::steady_clock;
   void pump();
+  void wait_a_little();
   bool send_manual_control(const ArdusubAxes& axes);
   bool send_rc_override(const mavlink::RcChannelsOverride& m);
   // The command in the configured mode (neutral while disarmed).
@@ -111,6 +117,7 @@ class ArdusubThrusterBus final : public hal::ThrusterBus {
   ArdusubRcOverrideMap rc_map_;
   ArdusubSensors* sensors_ = nullptr;
   std::unique_ptr<GcsStatus> gcs_;
+  std::function<void()> wait_hook_;
   mavlink::UdpEndpoint endpoint_;
   int required_mode_ = 0;
   mavlink::MavlinkUdpLink link_;

@@ -115,6 +115,24 @@ void apply_recharge_sea(SimParams& p) {
   p.contact.socket_wall = true;
 }
 
+void describe(ParamVisitor& v, MockArdusubParams& p) {
+  v.param("pilot_gain", p.pilot_gain,
+          {"-", 0.1, 1.0, "the mock ArduSub's joystick gain (JS_GAIN_DEFAULT) on every axis"});
+  v.param("level_kp_nm_per_rad", p.level_kp_nm_per_rad,
+          {"N*m/rad", 0.0, 500.0, "stabilise: roll/pitch moment per radian off level"});
+  v.param("level_kd_nms_per_rad", p.level_kd_nms_per_rad,
+          {"N*m*s/rad", 0.0, 100.0, "stabilise: roll/pitch moment per rad/s of roll/pitch rate"});
+  v.param("pilot_timeout_ms", p.pilot_timeout_ms,
+          {"ms", 100.0, 60000.0,
+           "FS_PILOT_TIMEOUT: no MANUAL_CONTROL this long while armed: neutral and disarm"});
+  v.param("heartbeat_period_ms", p.heartbeat_period_ms,
+          {"ms", 10.0, 5000.0, "period of the mock ArduSub's HEARTBEAT (ArduSub: 1000)"});
+  v.param("surface_pressure_hpa", p.surface_pressure_hpa,
+          {"hPa", 800.0, 1100.0, "absolute pressure the mock reports at depth 0"});
+  v.param("water_density_kg_m3", p.water_density_kg_m3,
+          {"kg/m^3", 990.0, 1050.0, "water density the mock's pressure grows with"});
+}
+
 void describe(ParamVisitor& v, SimParams& p) {
   v.param("integration_step_ms", p.integration_step_ms,
           {"ms", 0.1, 10.0, "physics integration step (RK4), finer than the control tick"});
@@ -149,6 +167,8 @@ void describe(ParamVisitor& v, SimParams& p) {
             [&p](ParamVisitor& s) { describe(s, p.scenarios); });
   v.section("recharge", "the recharging mission: battery, charger, sped-up charge, its sea",
             [&p](ParamVisitor& s) { describe(s, p.recharge); });
+  v.section("ardusub", "the mock ArduSub behind thruster_bus.backend ardusub in rovctl sim",
+            [&p](ParamVisitor& s) { describe(s, p.ardusub); });
 }
 
 }  // namespace rovctl::hal::mock

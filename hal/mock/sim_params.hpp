@@ -111,6 +111,19 @@ struct RechargeSimParams {
 
 void describe(ParamVisitor& v, RechargeSimParams& p);
 
+// The mock ArduSub (the vehicle side of `rovctl sim` with thruster_bus.backend ardusub).
+struct MockArdusubParams {
+  double pilot_gain = 0.5;                // ArduSub's JS_GAIN_DEFAULT: scales every pilot axis
+  double level_kp_nm_per_rad = 6.0;       // stabilise: roll/pitch moment per radian off level
+  double level_kd_nms_per_rad = 2.0;      // and per rad/s of roll/pitch rate
+  double pilot_timeout_ms = 3000.0;       // FS_PILOT_TIMEOUT: no pilot input this long: disarm
+  double heartbeat_period_ms = 1000.0;    // ArduSub's HEARTBEAT (1 Hz)
+  double surface_pressure_hpa = 1013.25;  // the pressure sensor's reading at depth 0
+  double water_density_kg_m3 = 1025.0;
+};
+
+void describe(ParamVisitor& v, MockArdusubParams& p);
+
 struct SimParams {
   double integration_step_ms = 2.0;  // physics step, finer than the control tick
   bool realtime = false;             // pace the simulation by the wall clock (hardware in the loop)
@@ -128,6 +141,7 @@ struct SimParams {
   std::string scenario = "clear";
   ScenarioParams scenarios;
   RechargeSimParams recharge;
+  MockArdusubParams ardusub;
 };
 
 void describe(ParamVisitor& v, SimParams& p);

@@ -57,7 +57,7 @@ std::string error_of(const std::string& config) {
 }
 
 TEST(ConfigValidation, TheShippedConfigsPassWithoutWarnings) {
-  for (const char* name : {"sim.yaml", "vehicle.yaml", "bluerov2-heavy.yaml"}) {
+  for (const char* name : {"sim.yaml", "sim-ardusub.yaml", "vehicle.yaml", "bluerov2-heavy.yaml"}) {
     const std::string file = std::string(ROVCTL_SOURCE_DIR) + "/deploy/config/" + name;
     const AppConfig c = load_app_config(file);
     EXPECT_NO_THROW(load_rig(c)) << name;
