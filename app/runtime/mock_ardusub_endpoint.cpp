@@ -68,8 +68,16 @@ void MockArdusubEndpoint::answer(const mav::CommandLong& c, std::uint8_t result,
 
 void MockArdusubEndpoint::take(const mav::Frame& f, std::chrono::nanoseconds now) {
   mav::ManualControl mc;
+  mav::RcChannelsOverride rc;
   mav::CommandLong c;
-  if (mav::unpack(f, mc)) {
+  if (mav::unpack(f, rc)) {
+    if (f.header.system_id != gcs_system_id_ || rc.target_system != system_id_) {
+      ++counters_.ignored;
+      return;
+    }
+    ++counters_.rc_override;
+    vehicle_.rc_override(rc.channels_us, now);
+  } else if (mav::unpack(f, mc)) {
     // ArduSub takes pilot input only from SYSID_MYGCS and only when aimed at itself.
     if (f.header.system_id != gcs_system_id_ || mc.target != system_id_) {
       ++counters_.ignored;

@@ -18,6 +18,7 @@ namespace rovctl::app {
 
 struct MockArdusubEndpointCounters {
   std::uint64_t manual_control = 0;  // taken (from the GCS id, aimed at us)
+  std::uint64_t rc_override = 0;     // RC_CHANNELS_OVERRIDE taken (the same rule)
   std::uint64_t ignored = 0;         // from another system id or aimed at another vehicle
   std::uint64_t commands = 0;        // COMMAND_LONG answered with a COMMAND_ACK
   std::uint64_t heartbeats_sent = 0;

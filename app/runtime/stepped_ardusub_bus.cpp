@@ -18,7 +18,10 @@ SteppedArdusubBus::SteppedArdusubBus(drivers::ArdusubThrusterBus& bus, MockArdus
 void SteppedArdusubBus::settle_peer() {
   const auto give_up = std::chrono::steady_clock::now() + kDeliveryGuard;
   peer_.service();
-  while (peer_.counters().manual_control < bus_.counters().manual_control_sent &&
+  // Until the peer has taken every command sent: MANUAL_CONTROL (wrench mode) or
+  // RC_CHANNELS_OVERRIDE (thrusters mode).
+  while (peer_.counters().manual_control + peer_.counters().rc_override <
+             bus_.counters().manual_control_sent + bus_.counters().rc_override_sent &&
          std::chrono::steady_clock::now() < give_up) {
     std::this_thread::yield();
     peer_.service();

@@ -60,6 +60,14 @@ void MockArdusub::pilot_input(const PilotAxes& axes, std::chrono::nanoseconds no
   last_input_ = now;
 }
 
+void MockArdusub::rc_override(const std::array<std::uint16_t, 18>& channels_us,
+                              std::chrono::nanoseconds now) {
+  override_us_ = channels_us;
+  override_seen_ = true;
+  last_override_ = now;
+  last_input_ = now;
+}
+
 void MockArdusub::mix(const Eigen::Matrix<double, 6, 1>& wrench, ThrusterCommand& out) const {
   out.count = count_;
   std::array<double, kMaxThrusters> f{};
@@ -82,6 +90,19 @@ void MockArdusub::update(std::chrono::nanoseconds now) {
     armed_ = false;
   }
   demanded_.setZero();
+  if (override_seen_ && now - last_override_ <= std::chrono::duration<double, std::milli>(
+                                                    params_.rc_override_time_ms)) {
+    // Passthrough: the ESC on output c reads RCIN c+1 (1100-1900 us, 1500 neutral). A released
+    // or ignored channel (0, 65535) holds nothing in the mock: neutral.
+    command_.count = count_;
+    for (std::size_t c = 0; c < count_; ++c) {
+      const int us = override_us_[c];
+      command_.thrust_fraction[c] =
+          us >= 1000 && us <= 2000 ? std::clamp((us - 1500) / 400.0, -1.0, 1.0) : 0.0;
+    }
+    world_.command_thrusters(command_);
+    return;
+  }
   if (!armed_) {
     command_ = ThrusterCommand{};
     command_.count = count_;

@@ -42,6 +42,11 @@ class MockArdusub {
 
   // MANUAL_CONTROL from the GCS: the newest pilot input, which refreshes the failsafe timer.
   void pilot_input(const PilotAxes& axes, std::chrono::nanoseconds now);
+  // RC_CHANNELS_OVERRIDE from the GCS with the thrusters' outputs set to RC passthrough
+  // (SERVOn_FUNCTION = RCINn, output n on channel n): each channel's PWM drives its ESC, past the
+  // mixer and stabilise, while the override is fresher than RC_OVERRIDE_TIME and whatever the arm
+  // state (passthrough outputs are not motor outputs). It refreshes the pilot-input timer.
+  void rc_override(const std::array<std::uint16_t, 18>& channels_us, std::chrono::nanoseconds now);
   // One pass of ArduSub's loop at `now`: the pilot failsafe, then the axes through the pilot
   // gain, the stabilise loop's roll/pitch moments on the vehicle's attitude (its AHRS: the
   // world's truth) and the mixer, delivered to the simulated thrusters. No allocation.
@@ -79,6 +84,9 @@ class MockArdusub {
   bool armed_ = false;
   std::uint32_t mode_ = kArdusubModeManual;
   PilotAxes axes_;
+  std::array<std::uint16_t, 18> override_us_{};
+  bool override_seen_ = false;
+  std::chrono::nanoseconds last_override_{0};
   std::chrono::nanoseconds last_input_{0};
   bool pilot_failsafe_ = false;
   Eigen::Matrix<double, 6, 1> demanded_ = Eigen::Matrix<double, 6, 1>::Zero();

@@ -125,6 +125,9 @@ void describe(ParamVisitor& v, MockArdusubParams& p) {
   v.param("pilot_timeout_ms", p.pilot_timeout_ms,
           {"ms", 100.0, 60000.0,
            "FS_PILOT_TIMEOUT: no MANUAL_CONTROL this long while armed: neutral and disarm"});
+  v.param("rc_override_time_ms", p.rc_override_time_ms,
+          {"ms", 100.0, 60000.0,
+           "RC_OVERRIDE_TIME: an RC_CHANNELS_OVERRIDE drives the passthrough outputs this long"});
   v.param("heartbeat_period_ms", p.heartbeat_period_ms,
           {"ms", 10.0, 5000.0, "period of the mock ArduSub's HEARTBEAT (ArduSub: 1000)"});
   v.param("surface_pressure_hpa", p.surface_pressure_hpa,

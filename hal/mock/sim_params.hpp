@@ -117,6 +117,7 @@ struct MockArdusubParams {
   double level_kp_nm_per_rad = 6.0;       // stabilise: roll/pitch moment per radian off level
   double level_kd_nms_per_rad = 2.0;      // and per rad/s of roll/pitch rate
   double pilot_timeout_ms = 3000.0;       // FS_PILOT_TIMEOUT: no pilot input this long: disarm
+  double rc_override_time_ms = 3000.0;    // RC_OVERRIDE_TIME: an RC override holds this long
   double heartbeat_period_ms = 1000.0;    // ArduSub's HEARTBEAT (1 Hz)
   double surface_pressure_hpa = 1013.25;  // the pressure sensor's reading at depth 0
   double water_density_kg_m3 = 1025.0;

@@ -121,5 +121,29 @@ TEST_F(ArdusubFixture, LostPilotInputDisarmsAfterTheTimeout) {
   EXPECT_TRUE(ardusub.pilot_failsafe());
 }
 
+// Thrusters mode: each channel's PWM is its ESC's fraction, past the mixer, until the override is
+// older than RC_OVERRIDE_TIME; then neutral.
+TEST_F(ArdusubFixture, RcOverridePassesEachChannelThroughUntilItExpires) {
+  start_rolled(0.0);
+  ASSERT_TRUE(ardusub.arm(true, world.time()));
+  std::array<std::uint16_t, 18> us{};
+  us.fill(1500);
+  us[0] = 1700;  // +0.5
+  us[4] = 1400;  // -0.25
+  us[8] = 0;     // released: neutral in the mock
+  ardusub.rc_override(us, world.time());
+  ardusub.update(world.time());
+  EXPECT_NEAR(ardusub.last_command().thrust_fraction[0], 0.5, 1e-9);
+  EXPECT_NEAR(ardusub.last_command().thrust_fraction[4], -0.25, 1e-9);
+  EXPECT_NEAR(ardusub.last_command().thrust_fraction[1], 0.0, 1e-9);
+  const nanoseconds hold = std::chrono::duration_cast<nanoseconds>(
+      std::chrono::duration<double, std::milli>(params.ardusub.rc_override_time_ms));
+  ardusub.update(world.time() + hold - milliseconds(10));
+  EXPECT_NEAR(ardusub.last_command().thrust_fraction[0], 0.5, 1e-9);
+  EXPECT_TRUE(ardusub.armed()) << "the override refreshes the pilot-input timer";
+  ardusub.update(world.time() + hold + milliseconds(10));
+  EXPECT_NEAR(ardusub.last_command().thrust_fraction[0], 0.0, 1e-9);
+}
+
 }  // namespace
 }  // namespace rovctl::hal::mock
