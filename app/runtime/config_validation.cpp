@@ -10,7 +10,7 @@
 #include "app/runtime/errors.hpp"
 #include "control/control_allocation_pseudo_inverse.hpp"
 #include "drivers/mavlink/ardusub_rc_override_map.hpp"
-#include "drivers/mavlink/mavlink_udp_link.hpp"
+#include "drivers/mavlink/mavlink_link.hpp"
 #include "estimator/stereo_calibration.hpp"
 
 namespace rovctl::app {
@@ -259,10 +259,10 @@ void validate_app_config(AppConfig& config) {
   }
   if (config.thruster_bus.backend == "ardusub") {
     const drivers::ArdusubParams& a = config.thruster_bus.ardusub;
-    drivers::mavlink::UdpEndpoint endpoint;
+    drivers::mavlink::LinkEndpoint endpoint;
     std::string error;
     // The parser's message starts with the key it is given: here the file:line: key.
-    if (!drivers::mavlink::parse_udp_endpoint(
+    if (!drivers::mavlink::parse_link_endpoint(
             a.link, config_location(config, "thruster_bus.ardusub.link"), endpoint, error)) {
       throw ConfigError(error);
     }

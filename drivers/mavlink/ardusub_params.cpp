@@ -59,7 +59,8 @@ void describe(hal::ParamVisitor& v, GcsStatusParams& p) {
 void describe(hal::ParamVisitor& v, ArdusubParams& p) {
   v.param("link", p.link,
           "MAVLink endpoint: udpin:ADDR:PORT listens (a BlueOS endpoint sending to us), "
-          "udpout:ADDR:PORT sends to ArduSub");
+          "udpout:ADDR:PORT sends to ArduSub, serial:DEVICE:BAUD is ArduSub's serial port "
+          "wired to this computer (8N1, no flow control)");
   v.param("mode", p.mode,
           "wrench: the servo's body wrench as MANUAL_CONTROL x, y, z, r (ArduSub allocates and "
           "levels); thrusters: rovctl's allocation as PWM in RC_CHANNELS_OVERRIDE (outputs set "

@@ -20,10 +20,10 @@ constexpr int kMaxFramesPerPump = 256;
 // thread only).
 constexpr auto kPollStep = std::chrono::milliseconds(1);
 
-mavlink::UdpEndpoint parse_link(const std::string& text) {
-  mavlink::UdpEndpoint e;
+mavlink::LinkEndpoint parse_link(const std::string& text) {
+  mavlink::LinkEndpoint e;
   std::string error;
-  if (!mavlink::parse_udp_endpoint(text, "thruster_bus.ardusub.link", e, error)) {
+  if (!mavlink::parse_link_endpoint(text, "thruster_bus.ardusub.link", e, error)) {
     throw std::invalid_argument(error);
   }
   return e;
@@ -80,7 +80,7 @@ template <typename Message>
 bool ArdusubThrusterBus::send(const Message& m) {
   const std::size_t n = mavlink::write_message(writer_, m, frame_);
   const bool ok = n > 0 && link_.send(std::span<const std::uint8_t>(frame_.data(), n)) ==
-                               mavlink::MavlinkUdpLink::Io::ok;
+                               mavlink::MavlinkLink::Io::ok;
   if (!ok) ++counters_.send_failures;
   return ok;
 }
@@ -133,8 +133,8 @@ void ArdusubThrusterBus::pump() {
   const auto now = Clock::now();
   for (int i = 0; i < kMaxFramesPerPump; ++i) {
     mavlink::Frame f;
-    const mavlink::MavlinkUdpLink::Io io = link_.receive(f);
-    if (io != mavlink::MavlinkUdpLink::Io::ok) break;
+    const mavlink::MavlinkLink::Io io = link_.receive(f);
+    if (io != mavlink::MavlinkLink::Io::ok) break;
     if (f.header.system_id != params_.vehicle_system_id) continue;
     if (sensors_ != nullptr) sensors_->accept(f);
     mavlink::Heartbeat hb;
@@ -172,7 +172,7 @@ void ArdusubThrusterBus::pump() {
     for (std::size_t n = gcs_->next_frame(now.time_since_epoch(), frame_); n > 0;
          n = gcs_->next_frame(now.time_since_epoch(), frame_)) {
       if (link_.send(std::span<const std::uint8_t>(frame_.data(), n)) !=
-          mavlink::MavlinkUdpLink::Io::ok) {
+          mavlink::MavlinkLink::Io::ok) {
         ++counters_.send_failures;
       }
     }

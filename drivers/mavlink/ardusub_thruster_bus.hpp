@@ -21,8 +21,8 @@
 #include "drivers/mavlink/ardusub_wrench_map.hpp"
 #include "drivers/mavlink/gcs_status.hpp"
 #include "drivers/mavlink/mavlink_codec.hpp"
+#include "drivers/mavlink/mavlink_link.hpp"
 #include "drivers/mavlink/mavlink_messages.hpp"
-#include "drivers/mavlink/mavlink_udp_link.hpp"
 #include "hal/interfaces/thruster_bus.hpp"
 #include "hal/model/thruster_layout.hpp"
 
@@ -118,9 +118,9 @@ class ArdusubThrusterBus final : public hal::ThrusterBus {
   ArdusubSensors* sensors_ = nullptr;
   std::unique_ptr<GcsStatus> gcs_;
   std::function<void()> wait_hook_;
-  mavlink::UdpEndpoint endpoint_;
+  mavlink::LinkEndpoint endpoint_;
   int required_mode_ = 0;
-  mavlink::MavlinkUdpLink link_;
+  mavlink::MavlinkLink link_;
   mavlink::FrameWriter writer_;
   std::array<std::uint8_t, mavlink::kMaxFrameBytes> frame_{};
   std::size_t thruster_count_ = 0;
