@@ -41,7 +41,7 @@ struct LoopEvent {
   control::FailsafeCause cause = control::FailsafeCause::none;
   control::SafeAction action = control::SafeAction::none;
   control::FailsafeEventKind failsafe_kind = control::FailsafeEventKind::trip;
-  std::uint64_t tick = 0;   // the loop's tick count when it happened (failsafes, thrusters)
+  std::uint64_t tick = 0;  // the loop's tick count when it happened (failsafes, thrusters)
   // Static string: why a mission transition happened, or why the bus reported a fault (its
   // fault_reason(), empty when it does not say).
   const char* reason = "";
