@@ -3,7 +3,11 @@
 // faults read from ArduSub's HEARTBEAT, and neutral + disarm on close.
 #include "drivers/mavlink/ardusub_thruster_bus.hpp"
 
+#include <fcntl.h>
 #include <gtest/gtest.h>
+#include <pty.h>
+#include <termios.h>
+#include <unistd.h>
 
 #include <atomic>
 #include <chrono>
@@ -369,6 +373,47 @@ TEST(ArdusubThrusterBus, ThrustersModeWriteAllocatesNothing) {
   }
   EXPECT_EQ(rovctl::testing::t_allocations - before, 0U);
   EXPECT_EQ(bus.counters().rc_override_sent - sent_before, 50U);
+}
+
+// ArduSub's serial port wired to the computer (serial:DEVICE:BAUD): the same handshake, commands
+// and final disarm as over UDP, here on a pseudo-terminal.
+TEST(ArdusubThrusterBus, OverASerialLineArmsCommandsAndDisarms) {
+  int leader = -1;
+  int follower = -1;
+  std::array<char, 128> path{};
+  if (::openpty(&leader, &follower, path.data(), nullptr, nullptr) != 0) {
+    GTEST_SKIP() << "no pseudo-terminal on this machine (openpty failed)";
+  }
+  termios t{};
+  ::tcgetattr(leader, &t);
+  ::cfmakeraw(&t);
+  ::tcsetattr(leader, TCSANOW, &t);
+  ::fcntl(leader, F_SETFL, ::fcntl(leader, F_GETFL) | O_NONBLOCK);
+  {
+    FakeArduSub peer(leader);
+    ArdusubParams p;
+    p.link = std::string("serial:") + path.data() + ":115200";
+    p.link_timeout_ms = 300;
+    p.ack_timeout_ms = 1000;
+    p.pilot_gain = 1.0;
+    {
+      ArdusubThrusterBus bus(p, hal::ThrusterLayout::bluerov2_heavy());
+      std::string error;
+      ASSERT_TRUE(bus.open(error)) << error;
+      ASSERT_EQ(bus.arm(true), hal::BusStatus::ok);
+      EXPECT_TRUE(peer.armed);
+      EXPECT_EQ(bus.write(all_forward(0.5)), hal::BusStatus::ok);
+      ASSERT_TRUE(peer.wait_for([](const std::vector<Received>& r) {
+        for (const Received& m : r) {
+          if (m.is_manual && m.manual.x > 0 && m.header.system_id == 255) return true;
+        }
+        return false;
+      }));
+    }  // the destructor closes: neutral, then disarm
+    EXPECT_FALSE(peer.armed);
+  }
+  ::close(leader);
+  ::close(follower);
 }
 
 TEST(ArdusubThrusterBus, WriteAndReadAllocateNothing) {

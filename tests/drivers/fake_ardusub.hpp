@@ -1,6 +1,9 @@
-// A fake ArduSub for tests: a thread on loopback UDP speaking MAVLink through rovctl's codec,
-// beating, acknowledging ARM_DISARM and streaming what it is told to.
+// A fake ArduSub for tests: a thread on loopback UDP (or the leader side of a pseudo-terminal, as
+// a serial ArduSub) speaking MAVLink through rovctl's codec, beating, acknowledging ARM_DISARM and
+// streaming what it is told to.
 #pragma once
+
+#include <unistd.h>
 
 #include <array>
 #include <atomic>
@@ -43,6 +46,11 @@ class FakeArduSub {
     if (!link_.open(e, error)) throw std::runtime_error(error);
     thread_ = std::thread([this] { run(); });
   }
+  // On a serial line: `leader_fd` is the leader side of a pseudo-terminal (raw, non-blocking),
+  // whose follower the bus opens as `serial:PATH:BAUD`. Not owned.
+  explicit FakeArduSub(int leader_fd) : serial_fd_(leader_fd) {
+    thread_ = std::thread([this] { run(); });
+  }
   ~FakeArduSub() {
     stop_ = true;
     thread_.join();
@@ -75,13 +83,29 @@ class FakeArduSub {
   void send(const M& m) {
     std::array<std::uint8_t, mav::kMaxFrameBytes> out{};
     const std::size_t n = mav::write_message(writer_, m, out);
-    (void)link_.send(std::span<const std::uint8_t>(out.data(), n));
+    if (serial_fd_ >= 0) {
+      (void)::write(serial_fd_, out.data(), n);
+    } else {
+      (void)link_.send(std::span<const std::uint8_t>(out.data(), n));
+    }
   }
+  bool receive(mav::Frame& f) {
+    if (serial_fd_ < 0) return link_.receive(f) == mav::MavlinkUdpLink::Io::ok;
+    while (!parser_.next(f)) {
+      std::array<std::uint8_t, 256> in{};
+      const ssize_t n = ::read(serial_fd_, in.data(), in.size());
+      if (n <= 0) return false;
+      parser_.feed(std::span<const std::uint8_t>(in.data(), static_cast<std::size_t>(n)));
+    }
+    return true;
+  }
+  // A serial line has its peer from the start; UDP once the bus has spoken.
+  bool has_peer() const { return serial_fd_ >= 0 || link_.has_peer(); }
   void run() {
     auto next_beat = std::chrono::steady_clock::now();
     while (!stop_) {
       mav::Frame f;
-      while (link_.receive(f) == mav::MavlinkUdpLink::Io::ok) {
+      while (receive(f)) {
         Received r;
         r.header = f.header;
         mav::Heartbeat hb;
@@ -103,7 +127,7 @@ class FakeArduSub {
         received_.push_back(r);
       }
       const auto now = std::chrono::steady_clock::now();
-      if (beating && link_.has_peer() && now >= next_beat) {
+      if (beating && has_peer() && now >= next_beat) {
         mav::Heartbeat hb;
         hb.type = 12;      // MAV_TYPE_SUBMARINE
         hb.autopilot = 3;  // MAV_AUTOPILOT_ARDUPILOTMEGA
@@ -125,6 +149,8 @@ class FakeArduSub {
   }
 
   mav::MavlinkUdpLink link_;
+  int serial_fd_ = -1;
+  mav::FrameParser parser_;
   mav::FrameWriter writer_{1, 1};
   std::atomic<bool> stop_{false};
   std::thread thread_;
