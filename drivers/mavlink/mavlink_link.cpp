@@ -44,54 +44,44 @@ bool MavlinkLink::has_peer() const {
   return kind_ == LinkEndpoint::Kind::serial ? serial_.is_open() : udp_.has_peer();
 }
 
-MavlinkLink::Io MavlinkLink::send(std::span<const std::uint8_t> frame) {
-  if (kind_ == LinkEndpoint::Kind::serial) {
-    switch (serial_.send(frame)) {
-      case MavlinkSerialLink::Io::ok:
-        return Io::ok;
-      case MavlinkSerialLink::Io::would_block:
-        return Io::would_block;
-      case MavlinkSerialLink::Io::error:
-        return Io::error;
-    }
-    return Io::error;
-  }
-  switch (udp_.send(frame)) {
+namespace {
+
+MavlinkLink::Io to_link_io(MavlinkUdpLink::Io io) {
+  switch (io) {
     case MavlinkUdpLink::Io::ok:
-      return Io::ok;
+      return MavlinkLink::Io::ok;
     case MavlinkUdpLink::Io::would_block:
-      return Io::would_block;
+      return MavlinkLink::Io::would_block;
     case MavlinkUdpLink::Io::no_peer:
-      return Io::no_peer;
+      return MavlinkLink::Io::no_peer;
     case MavlinkUdpLink::Io::error:
-      return Io::error;
+      return MavlinkLink::Io::error;
   }
-  return Io::error;
+  return MavlinkLink::Io::error;
+}
+
+MavlinkLink::Io to_link_io(MavlinkSerialLink::Io io) {
+  switch (io) {
+    case MavlinkSerialLink::Io::ok:
+      return MavlinkLink::Io::ok;
+    case MavlinkSerialLink::Io::would_block:
+      return MavlinkLink::Io::would_block;
+    case MavlinkSerialLink::Io::error:
+      return MavlinkLink::Io::error;
+  }
+  return MavlinkLink::Io::error;
+}
+
+}  // namespace
+
+MavlinkLink::Io MavlinkLink::send(std::span<const std::uint8_t> frame) {
+  return kind_ == LinkEndpoint::Kind::serial ? to_link_io(serial_.send(frame))
+                                             : to_link_io(udp_.send(frame));
 }
 
 MavlinkLink::Io MavlinkLink::receive(Frame& frame) {
-  if (kind_ == LinkEndpoint::Kind::serial) {
-    switch (serial_.receive(frame)) {
-      case MavlinkSerialLink::Io::ok:
-        return Io::ok;
-      case MavlinkSerialLink::Io::would_block:
-        return Io::would_block;
-      case MavlinkSerialLink::Io::error:
-        return Io::error;
-    }
-    return Io::error;
-  }
-  switch (udp_.receive(frame)) {
-    case MavlinkUdpLink::Io::ok:
-      return Io::ok;
-    case MavlinkUdpLink::Io::would_block:
-      return Io::would_block;
-    case MavlinkUdpLink::Io::no_peer:
-      return Io::no_peer;
-    case MavlinkUdpLink::Io::error:
-      return Io::error;
-  }
-  return Io::error;
+  return kind_ == LinkEndpoint::Kind::serial ? to_link_io(serial_.receive(frame))
+                                             : to_link_io(udp_.receive(frame));
 }
 
 }  // namespace rovctl::drivers::mavlink

@@ -3,11 +3,7 @@
 // faults read from ArduSub's HEARTBEAT, and neutral + disarm on close.
 #include "drivers/mavlink/ardusub_thruster_bus.hpp"
 
-#include <fcntl.h>
 #include <gtest/gtest.h>
-#include <pty.h>
-#include <termios.h>
-#include <unistd.h>
 
 #include <atomic>
 #include <chrono>
@@ -20,6 +16,7 @@
 #include "drivers/fake_ardusub.hpp"
 #include "drivers/mavlink/mavlink_messages.hpp"
 #include "drivers/mavlink/mavlink_udp_link.hpp"
+#include "drivers/pty_pair.hpp"
 // The hooks live in mavlink_codec_test.cpp, in the same binary.
 #define ROVCTL_MALLOC_HOOKS_ELSEWHERE 1
 #include "malloc_counter.hpp"
@@ -378,21 +375,12 @@ TEST(ArdusubThrusterBus, ThrustersModeWriteAllocatesNothing) {
 // ArduSub's serial port wired to the computer (serial:DEVICE:BAUD): the same handshake, commands
 // and final disarm as over UDP, here on a pseudo-terminal.
 TEST(ArdusubThrusterBus, OverASerialLineArmsCommandsAndDisarms) {
-  int leader = -1;
-  int follower = -1;
-  std::array<char, 128> path{};
-  if (::openpty(&leader, &follower, path.data(), nullptr, nullptr) != 0) {
-    GTEST_SKIP() << "no pseudo-terminal on this machine (openpty failed)";
-  }
-  termios t{};
-  ::tcgetattr(leader, &t);
-  ::cfmakeraw(&t);
-  ::tcsetattr(leader, TCSANOW, &t);
-  ::fcntl(leader, F_SETFL, ::fcntl(leader, F_GETFL) | O_NONBLOCK);
+  testing::PtyPair pty;
+  if (!pty.ok()) GTEST_SKIP() << "no pseudo-terminal on this machine (openpty failed)";
   {
-    FakeArduSub peer(leader);
+    FakeArduSub peer(pty.leader);
     ArdusubParams p;
-    p.link = std::string("serial:") + path.data() + ":115200";
+    p.link = "serial:" + pty.path + ":115200";
     p.link_timeout_ms = 300;
     p.ack_timeout_ms = 1000;
     p.pilot_gain = 1.0;
@@ -412,8 +400,6 @@ TEST(ArdusubThrusterBus, OverASerialLineArmsCommandsAndDisarms) {
     }  // the destructor closes: neutral, then disarm
     EXPECT_FALSE(peer.armed);
   }
-  ::close(leader);
-  ::close(follower);
 }
 
 TEST(ArdusubThrusterBus, WriteAndReadAllocateNothing) {

@@ -3,10 +3,7 @@
 // link string that picks UDP or serial.
 #include "drivers/mavlink/mavlink_serial_link.hpp"
 
-#include <fcntl.h>
 #include <gtest/gtest.h>
-#include <pty.h>
-#include <termios.h>
 #include <unistd.h>
 
 #include <array>
@@ -15,6 +12,7 @@
 
 #include "drivers/mavlink/mavlink_link.hpp"
 #include "drivers/mavlink/mavlink_messages.hpp"
+#include "drivers/pty_pair.hpp"
 
 namespace rovctl::drivers::mavlink {
 namespace {
@@ -74,28 +72,7 @@ TEST(MavlinkSerialLink, OpenErrorsNameTheDevice) {
   EXPECT_FALSE(link.is_open());
 }
 
-// A pseudo-terminal: the link opens the follower side by its path, the test plays ArduSub on the
-// leader side.
-struct Pty {
-  int leader = -1;
-  int follower = -1;
-  std::string path;
-  Pty() {
-    std::array<char, 128> name{};
-    if (::openpty(&leader, &follower, name.data(), nullptr, nullptr) == 0) {
-      path = name.data();
-      termios t{};
-      ::tcgetattr(leader, &t);
-      ::cfmakeraw(&t);
-      ::tcsetattr(leader, TCSANOW, &t);
-      ::fcntl(leader, F_SETFL, ::fcntl(leader, F_GETFL) | O_NONBLOCK);
-    }
-  }
-  ~Pty() {
-    if (leader >= 0) ::close(leader);
-    if (follower >= 0) ::close(follower);
-  }
-};
+using testing::PtyPair;
 
 MavlinkSerialLink::Io receive_within(MavlinkSerialLink& link, Frame& f) {
   for (int i = 0; i < 500; ++i) {
@@ -107,8 +84,8 @@ MavlinkSerialLink::Io receive_within(MavlinkSerialLink& link, Frame& f) {
 }
 
 TEST(MavlinkSerialLink, FramesSplitAcrossReadsAndGarbageBetweenThemComeOutWhole) {
-  Pty pty;
-  if (pty.leader < 0) GTEST_SKIP() << "no pseudo-terminal on this machine (openpty failed)";
+  PtyPair pty;
+  if (!pty.ok()) GTEST_SKIP() << "no pseudo-terminal on this machine (openpty failed)";
   MavlinkSerialLink link;
   std::string error;
   ASSERT_TRUE(link.open(SerialEndpoint{pty.path, 115200}, error)) << error;
@@ -141,8 +118,8 @@ TEST(MavlinkSerialLink, FramesSplitAcrossReadsAndGarbageBetweenThemComeOutWhole)
 }
 
 TEST(MavlinkSerialLink, SendsWholeFramesTheLeaderSideDecodes) {
-  Pty pty;
-  if (pty.leader < 0) GTEST_SKIP() << "no pseudo-terminal on this machine (openpty failed)";
+  PtyPair pty;
+  if (!pty.ok()) GTEST_SKIP() << "no pseudo-terminal on this machine (openpty failed)";
   MavlinkLink link;
   LinkEndpoint e;
   std::string error;
