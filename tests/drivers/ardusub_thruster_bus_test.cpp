@@ -274,8 +274,9 @@ TEST(ArdusubThrusterBus, OpenWithSensorsWaitsForAttitudeAndDepth) {
   EXPECT_NE(error.find("ATTITUDE_QUATERNION and SCALED_PRESSURE2"), std::string::npos) << error;
 
   peer.streaming = true;
-  ArdusubThrusterBus streamed(params, hal::ThrusterLayout::bluerov2_heavy());
+  // The sensors outlive the bus that feeds them (attach()'s contract): its close() still pumps.
   ArdusubSensors fed(ArdusubSensorParams{}, clock);
+  ArdusubThrusterBus streamed(params, hal::ThrusterLayout::bluerov2_heavy());
   streamed.attach(fed);
   ASSERT_TRUE(streamed.open(error)) << error;
   hal::SensorReadings r;
