@@ -5,6 +5,7 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 
 namespace rovctl::estimator {
 
@@ -25,12 +26,21 @@ void BlobSeeder::find(int view, const cv::Mat& labels) {
   std::fill(counts_.begin(), counts_.end(), 0);
   const int w = std::min(labels.cols, cells_x_ * kCell);
   const int h = std::min(labels.rows, cells_y_ * kCell);
+  static_assert(kCell == sizeof(std::uint64_t), "one cell's row is read as one word");
   for (int v = 0; v < h; ++v) {
     const std::uint8_t* row = labels.ptr<std::uint8_t>(v);
     const int cell_row = (v / kCell) * cells_x_;
-    for (int u = 0; u < w; ++u) {
-      const std::uint8_t c = row[u];
-      if (c != 0 && c < hal::kColourClassCount) ++counts_[c * cells + cell_row + u / kCell];
+    for (int u = 0; u < w; u += kCell) {
+      // Most of a frame is no colour: a cell's row of eight labels is skipped as one zero word.
+      std::uint64_t word = 0;
+      const int n = std::min(kCell, w - u);
+      std::memcpy(&word, row + u, static_cast<std::size_t>(n));
+      if (word == 0) continue;
+      std::uint16_t* cell = counts_.data() + cell_row + u / kCell;
+      for (int i = 0; i < n; ++i) {
+        const std::uint8_t c = row[u + i];
+        if (c != 0 && c < hal::kColourClassCount) ++cell[c * cells];
+      }
     }
   }
   for (int c = 0; c < hal::kColourClassCount; ++c) {

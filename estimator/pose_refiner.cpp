@@ -8,6 +8,7 @@
 
 #include "hal/model/pose.hpp"
 #include "hal/model/sphere_rim.hpp"
+#include "hal/model/unit_circle.hpp"
 
 namespace rovctl::estimator {
 
@@ -19,12 +20,12 @@ bool PoseRefiner::silhouette_centroid(const hal::CameraModel& camera, const Eige
   hal::SphereRim rim;
   if (!hal::sphere_rim(c, r, rim)) return false;
   constexpr int kRim = 32;
+  static const hal::UnitCircle<kRim> around;
   Eigen::Vector2d first, prev, p;
   double area2 = 0.0, cx = 0.0, cy = 0.0;
   for (int k = 0; k <= kRim; ++k) {
     if (k < kRim) {
-      const double phi = 2.0 * M_PI * k / kRim;
-      if (!camera.project(rim.point(phi), p)) return false;
+      if (!camera.project(rim.point(around[k].x(), around[k].y()), p)) return false;
       if (k == 0) first = p;
     } else {
       p = first;

@@ -10,6 +10,7 @@
 
 #include "hal/model/pose.hpp"
 #include "hal/model/sphere_rim.hpp"
+#include "hal/model/unit_circle.hpp"
 
 namespace rovctl::estimator {
 namespace {
@@ -27,6 +28,24 @@ constexpr double kIndependentPerSilhouette = 8.0;
 constexpr double kEdgeNoisePx = 0.3;
 constexpr int kMinInliers = 40;
 
+// A number that orders directions as atan2 does, over (-2, 2] instead of (-pi, pi], without the
+// arctangent: the outline's binary search runs for every rim point of every Jacobian column.
+double angle_order(const Eigen::Vector2d& d) {
+  const double p = d.y() / (std::abs(d.x()) + std::abs(d.y()));
+  if (d.x() >= 0.0) return p;
+  return d.y() >= 0.0 ? 2.0 - p : -2.0 - p;
+}
+
+// The silhouette's outline vertices and the rays cast across it, at fixed angles.
+const hal::UnitCircle<RimRefiner::kPolygon>& outline_angles() {
+  static const hal::UnitCircle<RimRefiner::kPolygon> circle;
+  return circle;
+}
+const hal::UnitCircle<RimRefiner::kRays>& ray_directions() {
+  static const hal::UnitCircle<RimRefiner::kRays> circle(-M_PI);
+  return circle;
+}
+
 double weight(double r, const Band& band) {
   if (r < -band.inside_px || r > band.outside_px) return 0.0;
   const double a = std::abs(r);
@@ -36,9 +55,9 @@ double weight(double r, const Band& band) {
 }  // namespace
 
 double RimRefiner::Silhouette::radius_along(const Eigen::Vector2d& d) const {
-  const double angle = std::atan2(d.y(), d.x());
-  const int hi = static_cast<int>(std::upper_bound(angle_rad.begin(), angle_rad.end(), angle) -
-                                  angle_rad.begin());
+  const double angle = angle_order(d);
+  const int hi = static_cast<int>(
+      std::upper_bound(pseudo_angle.begin(), pseudo_angle.end(), angle) - pseudo_angle.begin());
   const Eigen::Vector2d& pa = offset_px[(hi + kPolygon - 1) % kPolygon];
   const Eigen::Vector2d& pb = offset_px[hi % kPolygon];
   // Where the ray from the centre along d crosses the segment pa-pb.
@@ -65,33 +84,30 @@ bool RimRefiner::predict_one(int view, int sphere, const Eigen::Vector3d& c,
   const hal::CameraModel& cam = view == 0 ? rig_.left : rig_.right;
   hal::SphereRim rim;
   if (!hal::sphere_rim(c, marker_.spheres[sphere].radius_m, rim)) return false;
+  const hal::UnitCircle<kPolygon>& around = outline_angles();
   std::array<Eigen::Vector2d, kPolygon> p;
   Eigen::Vector2d centre = Eigen::Vector2d::Zero();
   for (int k = 0; k < kPolygon; ++k) {
-    if (!cam.project(rim.point(2.0 * M_PI * k / kPolygon), p[k])) return false;
+    if (!cam.project(rim.point(around[k].x(), around[k].y()), p[k])) return false;
     centre += p[k];
   }
   centre /= kPolygon;
   // Counter-clockwise in angle, starting at the smallest: radius_along's binary search.
   const Eigen::Vector2d a = p[0] - centre, b = p[1] - centre;
   const bool reverse = a.x() * b.y() - a.y() * b.x() < 0.0;
+  std::array<double, kPolygon> angle;
   int first = 0;
-  double smallest = 10.0;
   for (int k = 0; k < kPolygon; ++k) {
-    const Eigen::Vector2d d = p[reverse ? kPolygon - 1 - k : k] - centre;
-    const double ang = std::atan2(d.y(), d.x());
-    if (ang < smallest) {
-      smallest = ang;
-      first = k;
-    }
+    angle[k] = angle_order(p[reverse ? kPolygon - 1 - k : k] - centre);
+    if (angle[k] < angle[first]) first = k;
   }
   for (int k = 0; k < kPolygon; ++k) {
     const int step = (first + k) % kPolygon;
     sil.offset_px[k] = p[reverse ? kPolygon - 1 - step : step] - centre;
-    sil.angle_rad[k] = std::atan2(sil.offset_px[k].y(), sil.offset_px[k].x());
+    sil.pseudo_angle[k] = angle[step];
   }
   // A silhouette wrapped onto itself (lens distortion far outside its range) is no ellipse.
-  if (!std::is_sorted(sil.angle_rad.begin(), sil.angle_rad.end())) return false;
+  if (!std::is_sorted(sil.pseudo_angle.begin(), sil.pseudo_angle.end())) return false;
   sil.centre_px = centre;
   sil.valid = true;
   return true;
@@ -118,8 +134,7 @@ void RimRefiner::find_edges(const cv::Mat* labels[2], const Silhouettes& predict
       if (!sil.valid) continue;
       const auto colour = static_cast<std::uint8_t>(marker_.spheres[s].colour);
       for (int k = 0; k < kRays; ++k) {
-        const double theta = 2.0 * M_PI * k / kRays - M_PI;
-        const double c = std::cos(theta), sn = std::sin(theta);
+        const double c = ray_directions()[k].x(), sn = ray_directions()[k].y();
         const double rho = sil.radius_along(Eigen::Vector2d(c, sn));
         const Eigen::Vector2d rim_px = sil.centre_px + rho * Eigen::Vector2d(c, sn);
         if (rim_px.x() < kBorderMarginPx || rim_px.y() < kBorderMarginPx ||
@@ -132,13 +147,14 @@ void RimRefiner::find_edges(const cv::Mat* labels[2], const Silhouettes& predict
         int run = 0;  // consecutive colour samples
         bool in_colour = false, cut_by_border = false;
         for (double t = 0.3 * rho; t <= 1.6 * rho + 2.0; t += kStepPx) {
-          const long u = std::lround(sil.centre_px.x() + t * c);
-          const long v = std::lround(sil.centre_px.y() + t * sn);
-          if (u < 0 || v < 0 || u >= image.cols || v >= image.rows) {
+          // Rounded half away from zero as std::lround does, which costs a library call here.
+          const double x = sil.centre_px.x() + t * c, y = sil.centre_px.y() + t * sn;
+          if (x <= -0.5 || y <= -0.5 || x >= image.cols - 0.5 || y >= image.rows - 0.5) {
             cut_by_border = in_colour;
             break;
           }
-          const bool hit = image.ptr<std::uint8_t>(static_cast<int>(v))[u] == colour;
+          const int u = static_cast<int>(x + 0.5), v = static_cast<int>(y + 0.5);
+          const bool hit = image.ptr<std::uint8_t>(v)[u] == colour;
           if (hit) {
             ++run;
           } else if (in_colour && run >= 2) {

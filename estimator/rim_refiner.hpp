@@ -52,7 +52,8 @@ class RimRefiner {
   struct Silhouette {
     bool valid = false;
     Eigen::Vector2d centre_px = Eigen::Vector2d::Zero();
-    std::array<double, kPolygon> angle_rad{};
+    // Monotonic in the vertex's angle about the centre (see angle_order in the .cpp), not radians.
+    std::array<double, kPolygon> pseudo_angle{};
     std::array<Eigen::Vector2d, kPolygon> offset_px{};
     // Distance from the centre to the outline along the direction d (not normalised).
     double radius_along(const Eigen::Vector2d& d) const;

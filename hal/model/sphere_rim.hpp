@@ -15,8 +15,10 @@ struct SphereRim {
   double radius_m = 0.0;
 
   // The rim point at angle phi (rad) around the viewing axis.
-  Eigen::Vector3d point(double phi) const {
-    return centre_m + radius_m * (std::cos(phi) * e1 + std::sin(phi) * e2);
+  Eigen::Vector3d point(double phi) const { return point(std::cos(phi), std::sin(phi)); }
+  // The same, from the angle's cosine and sine: callers that walk fixed angles keep a table.
+  Eigen::Vector3d point(double cos_phi, double sin_phi) const {
+    return centre_m + radius_m * (cos_phi * e1 + sin_phi * e2);
   }
 };
 

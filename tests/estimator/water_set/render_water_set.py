@@ -1007,6 +1007,27 @@ def make_pair(rig, condition, index, seed, out_dir, pose_override=None):
 # ----------------------------------------------------------------------------------------------------
 
 
+def finished_pairs(out_dir, seed, jobs):
+    """The manifest entries of out_dir that this run would render again: same seed, images on disk."""
+    path = os.path.join(out_dir, "manifest.json")
+    if not os.path.exists(path):
+        return {}
+    with open(path) as f:
+        manifest = json.load(f)
+    if manifest.get("seed") != seed:
+        raise SystemExit("%s: seed %s, not %d; --resume needs the same seed" % (path, manifest.get("seed"), seed))
+    index = {}
+    for entry in manifest["pairs"]:
+        rel = entry.get("left", "")
+        try:
+            i = int(os.path.basename(rel).split("_")[0])
+        except ValueError:
+            continue
+        if all(os.path.exists(os.path.join(out_dir, entry[k])) for k in ("left", "right")):
+            index[(entry["condition"], i)] = entry
+    return {k: index[k] for k in jobs if k in index}
+
+
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--out", required=True, help="output folder")
@@ -1016,6 +1037,8 @@ def main(argv=None):
     ap.add_argument("--seed", type=int, default=1)
     ap.add_argument("--jobs", type=int, default=2, help="pairs rendered at once (one POV-Ray thread each)")
     ap.add_argument("--calibration", default=DEFAULT_CALIBRATION)
+    ap.add_argument("--resume", action="store_true", help="keep the pairs an earlier run of the same seed "
+                    "already wrote to --out (pairs are deterministic per seed, condition and index)")
     args = ap.parse_args(argv)
 
     if shutil.which("povray") is None:
@@ -1033,6 +1056,9 @@ def main(argv=None):
     jobs = [(c, i) for i in range(args.pairs_per_condition) for c in conds]
     start = time.time()
     entries = {}
+    if args.resume:
+        entries = finished_pairs(args.out, args.seed, jobs)
+        print("resuming: %d of %d pairs already rendered" % (len(entries), len(jobs)), flush=True)
 
     def write_manifest():
         # Rewritten after every pair, so a run that is stopped keeps what it finished.
@@ -1045,14 +1071,15 @@ def main(argv=None):
         os.replace(tmp, os.path.join(args.out, "manifest.json"))
 
     with concurrent.futures.ThreadPoolExecutor(max_workers=max(1, args.jobs)) as pool:
-        futs = {pool.submit(make_pair, rig, c, i, args.seed, args.out): (c, i) for c, i in jobs}
+        futs = {pool.submit(make_pair, rig, c, i, args.seed, args.out): (c, i) for c, i in jobs
+                if (c, i) not in entries}
         for n, fut in enumerate(concurrent.futures.as_completed(futs), 1):
             c, i = futs[fut]
             entries[(c, i)] = fut.result()
             write_manifest()
-            print("[%d/%d] %s %03d  %.0f s" % (n, len(jobs), c, i, time.time() - start), flush=True)
+            print("[%d/%d] %s %03d  %.0f s" % (n, len(futs), c, i, time.time() - start), flush=True)
     took = time.time() - start
-    print("rendered %d pairs in %.1f s (%.1f min) into %s" % (len(jobs), took, took / 60, args.out))
+    print("rendered %d pairs in %.1f s (%.1f min) into %s" % (len(futs), took, took / 60, args.out))
 
 
 if __name__ == "__main__":
