@@ -56,6 +56,14 @@ void describe(hal::ParamVisitor& v, EstimatorParams& p) {
           {"-", 0.0, 1.0,
            "improved mode: fraction of a sphere's predicted rim that its colour edge must confirm "
            "for a partly hidden sphere (score below sphere_support) to count as seen"});
+  v.param("smear_inner_min", p.smear_inner_min,
+          {"-", 0.0, 1.01,
+           "improved mode: share of a sphere's inner disc on its colour at which a sphere that "
+           "spills over its ring (motion blur) still counts as seen; 1.01 turns this off"});
+  v.param("smear_ring_max", p.smear_ring_max,
+          {"-", 0.0, 1.0,
+           "improved mode: most of the ring a smeared sphere may cover and still count as seen; "
+           "a pose that is off, or too far, puts colour all round the ring"});
   v.param("rim_sharp_rms_px", p.rim_sharp_rms_px,
           {"px", 0.1, 10.0,
            "improved mode: the rim fit replaces the centroids' pose only when the rims fit this "

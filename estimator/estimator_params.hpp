@@ -77,6 +77,11 @@ struct EstimatorParams {
   double sphere_support = 0.8;
   double rim_support = 0.4;
   double rim_sharp_rms_px = 0.62;
+  // Improved mode: a motion-blurred sphere fills its disc and smears over part of its ring, so it
+  // scores under sphere_support while its centroid (mid-exposure) is right. It counts as seen when
+  // at least smear_inner_min of the disc and at most smear_ring_max of the ring are its colour.
+  double smear_inner_min = 0.95;
+  double smear_ring_max = 0.5;
   double ok_bound_mm = 10.0;
   double ok_bound_deg = 5.0;
   // Improved mode: how far the segmentation divides out the scene's colour cast (0 off, 1 full

@@ -52,8 +52,8 @@ void MarkerFitness::set_labels(const cv::Mat& left, const cv::Mat& right) {
   }
 }
 
-double MarkerFitness::score_view(const View& view, const Eigen::Vector3d& c,
-                                 const Sphere& s) const {
+double MarkerFitness::score_view(const View& view, const Eigen::Vector3d& c, const Sphere& s,
+                                 double* ring_hits) const {
   const double r = s.radius_m;
   const double d2 = c.squaredNorm();
   if (c.z() <= r * 1.01 || d2 <= r * r * 1.0201) return 0.0;
@@ -97,20 +97,26 @@ double MarkerFitness::score_view(const View& view, const Eigen::Vector3d& c,
   if (border_occluder_ && inner_in_image < inner_total && 4 * inner_in_image >= inner_total &&
       in_image > 0) {
     // Both rings scored on their samples inside the image only.
+    if (ring_hits != nullptr) *ring_hits = static_cast<double>(outside) / in_image;
     return static_cast<double>(inside) / inner_in_image - static_cast<double>(outside) / in_image;
   }
+  if (ring_hits != nullptr) *ring_hits = outside * inv_outer_;
   return inside * inv_inner_ - outside * inv_outer_;
 }
 
-void MarkerFitness::sphere_scores(const Eigen::Isometry3d& T_cl_marker,
-                                  SphereScores& scores) const {
+void MarkerFitness::sphere_scores(const Eigen::Isometry3d& T_cl_marker, SphereScores& scores,
+                                  SphereScores* ring_hits) const {
   scores = {};
-  if (views_[0].labels == nullptr) return;
-  for (std::size_t i = 0; i < spheres_.size() && i < 3; ++i) {
-    const Eigen::Vector3d c_cl = T_cl_marker * spheres_[i].centre_marker_m;
-    scores[0][i] = score_view(views_[0], c_cl, spheres_[i]);
-    scores[1][i] = score_view(views_[1], views_[1].R_v_cl * c_cl + views_[1].t_v_cl, spheres_[i]);
+  SphereScores ring{};
+  if (views_[0].labels != nullptr) {
+    for (std::size_t i = 0; i < spheres_.size() && i < 3; ++i) {
+      const Eigen::Vector3d c_cl = T_cl_marker * spheres_[i].centre_marker_m;
+      scores[0][i] = score_view(views_[0], c_cl, spheres_[i], &ring[0][i]);
+      scores[1][i] = score_view(views_[1], views_[1].R_v_cl * c_cl + views_[1].t_v_cl, spheres_[i],
+                                &ring[1][i]);
+    }
   }
+  if (ring_hits != nullptr) *ring_hits = ring;
 }
 
 double MarkerFitness::evaluate(const Eigen::Isometry3d& T_cl_marker) const {

@@ -62,7 +62,10 @@ class MarkerFitness {
   // score(v, s) of every sphere in both views at one pose (spheres in the marker's order; unused
   // entries 0): which spheres the images support, for the estimate's honesty, not the search.
   using SphereScores = std::array<std::array<double, 3>, 2>;
-  void sphere_scores(const Eigen::Isometry3d& T_cl_marker, SphereScores& scores) const;
+  // ring_hits, if given: the share of each ring's samples on the sphere's colour (score + ring
+  // is the inner disc's share), which tells a smear from a pose that is off.
+  void sphere_scores(const Eigen::Isometry3d& T_cl_marker, SphereScores& scores,
+                     SphereScores* ring_hits = nullptr) const;
   std::size_t sphere_count() const { return spheres_.size(); }
 
  private:
@@ -78,7 +81,8 @@ class MarkerFitness {
     double radius_m;
     std::uint8_t colour;
   };
-  double score_view(const View& view, const Eigen::Vector3d& centre_m, const Sphere& s) const;
+  double score_view(const View& view, const Eigen::Vector3d& centre_m, const Sphere& s,
+                    double* ring_hits = nullptr) const;
   double nearness(int view, const Eigen::Vector3d& centre_m, std::uint8_t colour) const;
 
   std::array<View, 2> views_;

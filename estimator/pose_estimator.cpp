@@ -166,15 +166,18 @@ PoseEstimate PoseEstimator::estimate() {
   }
   estimate.recognised = estimate.fitness >= params_.recognition_threshold;
   MarkerFitness::SphereScores& scores = estimate.sphere_scores;
-  fitness_.sphere_scores(estimate.T_cl_marker, scores);
+  fitness_.sphere_scores(estimate.T_cl_marker, scores, &estimate.sphere_ring_hits);
   const int spheres = static_cast<int>(fitness_.sphere_count());
   for (int v = 0; v < 2; ++v) {
     for (int s = 0; s < spheres && s < 3; ++s) {
       // Whole and in colour, or partly hidden with its visible rim where the pose puts it.
       const bool whole = scores[v][s] >= params_.sphere_support;
+      const double ring = estimate.sphere_ring_hits[v][s];
+      const bool smeared = improved && scores[v][s] + ring >= params_.smear_inner_min &&
+                           ring <= params_.smear_ring_max;
       const bool rim = estimate.rim_refined && estimate.rim_support[v][s] >= params_.rim_support &&
                        scores[v][s] > 0.0;
-      if (whole || rim) ++estimate.spheres_seen[v];
+      if (whole || rim || smeared) ++estimate.spheres_seen[v];
     }
   }
   // Improved mode also asks the geometry: one rigid marker through the blobs' centroids or the

@@ -34,7 +34,8 @@ struct PoseEstimate {
   // threshold), and ok only when every sphere is supported in both views. A partial view
   // (recognised, not ok) is good enough to approach on, never to dock on.
   std::array<int, 2> spheres_seen{0, 0};
-  std::array<std::array<double, 3>, 2> sphere_scores{};  // score(v, s) at this pose
+  std::array<std::array<double, 3>, 2> sphere_scores{};     // score(v, s) at this pose
+  std::array<std::array<double, 3>, 2> sphere_ring_hits{};  // each ring's share on colour
   // Improved mode: the pose was refined on the blobs' centroids (all spheres' blobs agree with one
   // rigid marker within the refiner's residual gate), with a 3-sigma error bound from that fit.
   // NaN bounds when not refined (faithful mode: the fitness alone, no bound).

@@ -145,6 +145,7 @@ std::vector<ConditionScore> score_validation_set(const hal::StereoRig& rig,
     r.spheres_seen_left = e.spheres_seen[0];
     r.spheres_seen_right = e.spheres_seen[1];
     r.sphere_scores = e.sphere_scores;
+    r.sphere_ring_hits = e.sphere_ring_hits;
     r.rim_refined = e.rim_refined;
     r.rim_support = e.rim_support;
     r.error_bound_mm = 1000.0 * e.error_bound_m;

@@ -53,6 +53,7 @@ struct PairResult {
   double fitness = 0.0;
   int spheres_seen_left = 0, spheres_seen_right = 0;
   std::array<std::array<double, 3>, 2> sphere_scores{};
+  std::array<std::array<double, 3>, 2> sphere_ring_hits{};
   bool rim_refined = false;
   std::array<std::array<double, 3>, 2> rim_support{};
   double error_bound_mm = 0.0, error_bound_deg = 0.0;
