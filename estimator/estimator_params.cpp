@@ -48,6 +48,11 @@ void describe(hal::ParamVisitor& v, EstimatorParams& p) {
           {"-", 0.0, 1.0,
            "improved mode: white balance to the scene's median colour before the hue windows, "
            "as a power of the full gain (0 off, 1 full): water takes red first"});
+  v.param("water_retry", p.water_retry,
+          {"-", 0.0, 1.0,
+           "improved mode: a frame whose estimate is not ok is segmented again white-balanced "
+           "with this strength (as water_correction) and kept if that estimate is ok; the red "
+           "sphere far out in coastal water; 0 off"});
   v.param("sphere_support", p.sphere_support,
           {"-", 0.0, 1.0,
            "score of one sphere in one view (inner hits minus ring hits) at which it counts as "

@@ -87,6 +87,9 @@ struct EstimatorParams {
   // Improved mode: how far the segmentation divides out the scene's colour cast (0 off, 1 full
   // von Kries white balance to the median colour).
   double water_correction = 0.0;
+  // Improved mode: a frame whose estimate is not ok is segmented again with this correction (the
+  // same scale) and estimated once more; that estimate is kept only if it is ok. 0 off.
+  double water_retry = 0.5;
   // Improvements (used when mode is "improved").
   bool blob_seeding = true;  // seed individuals from colour blobs triangulated in 3D
   bool refine_elite = true;  // least-squares refinement of the elite on blob centroids

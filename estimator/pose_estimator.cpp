@@ -36,6 +36,9 @@ PoseEstimator::PoseEstimator(const hal::StereoRig& rig, const hal::MarkerModel& 
       blobs_(rig, marker),
       refiner_(rig, marker),
       rim_(rig, marker) {
+  if (params_.improved() && params_.water_retry > 0.0) {
+    water_segmenter_.emplace(marker, params_.water_retry);
+  }
   labels_[0].create(rig.left.height_px, rig.left.width_px, CV_8UC1);
   labels_[1].create(rig.right.height_px, rig.right.width_px, CV_8UC1);
   labels_[0].setTo(0);
@@ -57,6 +60,8 @@ bool PoseEstimator::segment(const cv::Mat& left_bgr, const cv::Mat& right_bgr) {
   input_error_ = image_error(left_bgr, rig_.left);
   if (input_error_ == nullptr) input_error_ = image_error(right_bgr, rig_.right);
   if (input_error_ != nullptr) return false;
+  images_[0] = &left_bgr;
+  images_[1] = &right_bgr;
   segmenter_.segment(left_bgr, labels_[0]);
   segmenter_.segment(right_bgr, labels_[1]);
   fitness_.update_far_field();
@@ -64,6 +69,26 @@ bool PoseEstimator::segment(const cv::Mat& left_bgr, const cv::Mat& right_bgr) {
 }
 
 PoseEstimate PoseEstimator::estimate() {
+  PoseEstimate first = estimate_on_labels();
+  if (first.ok || input_error_ != nullptr || !water_segmenter_) return first;
+  // Water takes red first: far out in coastal water the red sphere is a greyish brown under the
+  // hue windows. Balanced to the scene's cast it is red again, but the same balance moves clear
+  // water's colours, so it is a second look for a frame the first could not vouch for, and its
+  // estimate is taken only if it earns its own ok.
+  water_segmenter_->segment(*images_[0], labels_[0]);
+  water_segmenter_->segment(*images_[1], labels_[1]);
+  fitness_.update_far_field();
+  PoseEstimate second = estimate_on_labels();
+  if (!second.ok) {
+    first.compute_time = second.compute_time;
+    return first;
+  }
+  second.water_corrected = true;
+  second.generations += first.generations;
+  return second;
+}
+
+PoseEstimate PoseEstimator::estimate_on_labels() {
   using Clock = std::chrono::steady_clock;
   const Clock::time_point start = frame_start_;
   if (input_error_ != nullptr) {

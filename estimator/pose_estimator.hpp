@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <limits>
 #include <opencv2/core/mat.hpp>
+#include <optional>
 
 #include "estimator/blob_seeder.hpp"
 #include "estimator/estimator_params.hpp"
@@ -48,6 +49,9 @@ struct PoseEstimate {
   bool rim_refined = false;
   double rim_rms_px = std::numeric_limits<double>::quiet_NaN();
   std::array<std::array<double, 3>, 2> rim_support{};
+  // Improved mode: this estimate came from the second look, the pair segmented again white-
+  // balanced to the water's cast (EstimatorParams::water_retry), after the first was not ok.
+  bool water_corrected = false;
   bool ok = false;
   int generations = 0;  // generations run this frame
   std::chrono::nanoseconds compute_time{0};
@@ -65,9 +69,11 @@ class PoseEstimator {
   PoseEstimate update(const cv::Mat& left_bgr, const cv::Mat& right_bgr);
   // The two stages of a frame, timed apart by the tick. segment() labels both images; false
   // (and the next estimate() says why) when an image's size or type disagrees with the rig.
+  // The images are referenced, not copied: they must outlive the estimate() that follows.
   bool segment(const cv::Mat& left_bgr, const cv::Mat& right_bgr);
   // Evolves the carried-over population on the last segmented pair within the frame budget,
-  // which counts from the start of segment().
+  // which counts from the start of segment(); then, if that is not ok and water_retry is on,
+  // once more on the pair segmented in the water's colour.
   PoseEstimate estimate();
   void reset();  // fresh random population (marker lost / new search)
 
@@ -81,13 +87,17 @@ class PoseEstimator {
   hal::StereoRig rig_;
   EstimatorParams params_;
   HueSegmenter segmenter_;
+  std::optional<HueSegmenter> water_segmenter_;  // improved mode with water_retry > 0
   GeneCodec codec_;
   MarkerFitness fitness_;
   Rmga ga_;
   BlobSeeder blobs_;
   PoseRefiner refiner_;
   RimRefiner rim_;
+  PoseEstimate estimate_on_labels();
+
   cv::Mat labels_[2];
+  const cv::Mat* images_[2] = {nullptr, nullptr};  // the last segment()'s, for the second look
   long extra_evaluations_ = 0;
   std::chrono::steady_clock::time_point frame_start_{};
   const char* input_error_ = nullptr;

@@ -196,6 +196,10 @@ TrialResult run_docking_trial(const AppConfig& config, const hal::StereoRig& rig
              std::hypot(w.x(), w.y()), d.seated});
       }
     }
+    if (d.contact) {
+      result.touch_lateral_max_mm =
+          std::max(result.touch_lateral_max_mm, d.lateral_error_m * 1000.0);
+    }
     if (d.docked && !captured) {
       captured = true;
       result.time_to_dock_s = std::chrono::duration<double>(d.docked_at).count();

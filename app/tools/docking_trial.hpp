@@ -84,7 +84,10 @@ struct TrialResult {
   bool success = false;         // docked within the lateral/yaw tolerances at contact
   double time_to_dock_s = -1.0;
   double lateral_error_mm = -1.0;  // probe tip off the socket axis at capture
-  double yaw_error_deg = 0.0;      // heading error at capture
+  // The largest lateral error (mm) at which the probe touched the station (face or socket), -1
+  // if it never touched: over kTouchOffCentreMm it hit the rim, not the funnel.
+  double touch_lateral_max_mm = -1.0;
+  double yaw_error_deg = 0.0;  // heading error at capture
   double sim_time_s = 0.0;
   std::string final_state;
   int aborts = 0;

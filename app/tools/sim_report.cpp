@@ -75,6 +75,8 @@ SimSummary summarise(const std::vector<TrialResult>& results) {
       yaw.push_back(std::abs(r.yaw_error_deg));
     }
     if (r.estimate_error_mm_median >= 0) est_err.push_back(r.estimate_error_mm_median);
+    if (r.touch_lateral_max_mm > kTouchOffCentreMm) ++s.touched_off_centre;
+    s.touch_lateral_mm_max = std::max(s.touch_lateral_mm_max, r.touch_lateral_max_mm);
     s.ticks += r.ticks;
     s.overruns += r.overruns;
     s.tick_jitter_ms_p99 = std::max(s.tick_jitter_ms_p99, r.jitter_p99_ms);
@@ -103,6 +105,8 @@ std::string summary_json(const SimSummary& s) {
       .field("overruns", static_cast<long>(s.overruns))
       .field("tick_jitter_ms_p99", s.tick_jitter_ms_p99)
       .field("captured", s.captured)
+      .field("touched_off_centre", s.touched_off_centre)
+      .field("touch_lateral_mm_max", s.touch_lateral_mm_max)
       .field("ticks", static_cast<long>(s.ticks))
       .field("tick_jitter_ms_max", s.tick_jitter_ms_max)
       .field("estimator_ms_mean", s.estimator_ms_mean)
@@ -147,12 +151,14 @@ std::string summary_text(const SimSummary& s, const std::vector<TrialResult>& re
   std::snprintf(
       line, sizeof(line),
       "\ndocked %d of %d (%.0f %%)  time to dock median %.1f s  lateral error p95 %.1f mm  "
-      "yaw error p95 %.2f deg\nticks %llu  overruns %llu  tick jitter p99 %.3f ms (max %.3f)  "
+      "yaw error p95 %.2f deg\ntouched the station over %.0f mm off the axis: %d trials "
+      "(largest touch %.1f mm)\nticks %llu  overruns %llu  tick jitter p99 %.3f ms (max %.3f)  "
       "estimator %.2f ms per tick  estimate error median %.1f mm\n",
       s.docked, s.trials, 100.0 * s.success_rate, s.time_to_dock_s_median,
-      s.final_lateral_error_mm_p95, s.final_yaw_error_deg_p95,
-      static_cast<unsigned long long>(s.ticks), static_cast<unsigned long long>(s.overruns),
-      s.tick_jitter_ms_p99, s.tick_jitter_ms_max, s.estimator_ms_mean, s.estimate_error_mm_median);
+      s.final_lateral_error_mm_p95, s.final_yaw_error_deg_p95, kTouchOffCentreMm,
+      s.touched_off_centre, s.touch_lateral_mm_max, static_cast<unsigned long long>(s.ticks),
+      static_cast<unsigned long long>(s.overruns), s.tick_jitter_ms_p99, s.tick_jitter_ms_max,
+      s.estimator_ms_mean, s.estimate_error_mm_median);
   o << line;
   if (s.recharge) {
     o << "\ntrial  result      end of charge                          seated_h  contact  "

@@ -9,10 +9,18 @@
 
 namespace rovctl::app {
 
+// A probe that touches the station further than this off the socket axis hits the rim: the
+// estimate it was driven on was wrong, whatever the mission says next.
+inline constexpr double kTouchOffCentreMm = 20.0;
+
 struct SimSummary {
   int trials = 0;
   int docked = 0;    // trial_docked(): captured within tolerances and the mission said DOCKED
   int captured = 0;  // captured by the socket at all
+  // Trials whose probe touched the station more than kTouchOffCentreMm off the socket axis, and
+  // the largest such lateral error over all trials (-1: no trial touched).
+  int touched_off_centre = 0;
+  double touch_lateral_mm_max = -1.0;
   double success_rate = 0.0;
   double time_to_dock_s_median = -1.0;
   double final_lateral_error_mm_p95 = -1.0;

@@ -32,5 +32,18 @@ TEST(SimReport, ATrialIsDockedOnlyWhenTheMissionSaysSo) {
   EXPECT_DOUBLE_EQ(s.success_rate, 0.25);
 }
 
+TEST(SimReport, ATouchOffTheSocketAxisIsCountedEvenWhenTheTrialDockedLater) {
+  std::vector<TrialResult> results = {captured_trial(true, 3.0), captured_trial(true, 3.0),
+                                      TrialResult{}};
+  results[0].touch_lateral_max_mm = 4.0;   // touched inside the funnel
+  results[1].touch_lateral_max_mm = 26.0;  // hit the rim first, then docked
+  const SimSummary s = summarise(results);
+  EXPECT_EQ(s.touched_off_centre, 1);
+  EXPECT_DOUBLE_EQ(s.touch_lateral_mm_max, 26.0);
+  EXPECT_NE(summary_json(s).find("\"touched_off_centre\": 1"), std::string::npos)
+      << summary_json(s);
+  EXPECT_EQ(summarise({TrialResult{}}).touch_lateral_mm_max, -1.0) << "never touched";
+}
+
 }  // namespace
 }  // namespace rovctl::app
