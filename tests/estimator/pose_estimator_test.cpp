@@ -79,6 +79,14 @@ TEST(PoseEstimator, InconsistentParamsThrow) {
   EXPECT_THROW(PoseEstimator(scene.rig, scene.marker, p, 1), std::invalid_argument);
 }
 
+// A length_px smear along a slanted line, as a sideways surge during the exposure.
+void smear(const cv::Mat& image, int length_px, cv::Mat& out) {
+  cv::Mat kernel = cv::Mat::zeros(length_px, length_px, CV_32F);
+  cv::line(kernel, {0, 4}, {length_px - 1, length_px - 5}, cv::Scalar(1.0));
+  kernel /= cv::sum(kernel)[0];
+  cv::filter2D(image, out, -1, kernel);
+}
+
 // A smeared rim fits loosely and leans the pose, while the smear's centroid stays at mid-exposure:
 // the rims must not replace the centroids' pose then, and no blurred pair may be ok and wrong.
 TEST(PoseEstimator, AMotionBlurredPairKeepsTheCentroidsPoseNotTheSmearedRims) {
@@ -90,13 +98,9 @@ TEST(PoseEstimator, AMotionBlurredPairKeepsTheCentroidsPoseNotTheSmearedRims) {
     scene.render(truth, trial);
     PoseEstimator sharp(scene.rig, scene.marker, EstimatorParams{}, trial);
     sharp_rim_refined += sharp.update(scene.left_bgr, scene.right_bgr).rim_refined ? 1 : 0;
-    // A 15 px smear along a slanted line, as a sideways surge during the exposure.
-    cv::Mat kernel = cv::Mat::zeros(15, 15, CV_32F);
-    cv::line(kernel, {0, 4}, {14, 10}, cv::Scalar(1.0));
-    kernel /= cv::sum(kernel)[0];
     cv::Mat left, right;
-    cv::filter2D(scene.left_bgr, left, -1, kernel);
-    cv::filter2D(scene.right_bgr, right, -1, kernel);
+    smear(scene.left_bgr, 15, left);
+    smear(scene.right_bgr, 15, right);
     PoseEstimator blurred(scene.rig, scene.marker, EstimatorParams{}, trial);
     const PoseEstimate e = blurred.update(left, right);
     rim_refined += e.rim_refined ? 1 : 0;
@@ -127,12 +131,9 @@ TEST(PoseEstimator, ASmearedSphereThatFillsItsDiscCountsAsSeen) {
     // about as long.
     const Eigen::Isometry3d truth = random_pose(rng, 0.9, 1.2, 20.0);
     scene.render(truth, trial);
-    cv::Mat kernel = cv::Mat::zeros(13, 13, CV_32F);
-    cv::line(kernel, {0, 4}, {12, 8}, cv::Scalar(1.0));
-    kernel /= cv::sum(kernel)[0];
     cv::Mat left, right;
-    cv::filter2D(scene.left_bgr, left, -1, kernel);
-    cv::filter2D(scene.right_bgr, right, -1, kernel);
+    smear(scene.left_bgr, 13, left);
+    smear(scene.right_bgr, 13, right);
     PoseEstimator with_rule(scene.rig, scene.marker, rule, trial);
     PoseEstimator without(scene.rig, scene.marker, strict, trial);
     const PoseEstimate e = with_rule.update(left, right);
