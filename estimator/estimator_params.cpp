@@ -74,6 +74,11 @@ void describe(hal::ParamVisitor& v, EstimatorParams& p) {
            "improved mode: the rim fit replaces the centroids' pose only when the rims fit this "
            "well (rms); a sharp sphere's rim fits to 0.35-0.45 px, a blurred or noisy one (motion "
            "blur, JPEG) leans the pose while its centroids stay true"});
+  v.param("rim_ring_max", p.rim_ring_max,
+          {"-", 0.0, 1.0,
+           "improved mode: the rim fit replaces the centroids' pose only when no sphere's colour "
+           "covers more than this share of the ring around its fitted rim (a smear: its rims lean "
+           "the pose along it)"});
   v.param("ok_bound_mm", p.ok_bound_mm,
           {"mm", 0.1, 1000.0,
            "improved mode: an estimate is ok only when its 3-sigma position bound is within this"});

@@ -176,8 +176,17 @@ PoseEstimate PoseEstimator::estimate_on_labels() {
       }
       const double f = fitness_.evaluate(T);
       ++extra_evaluations_;
+      // A sphere whose colour spills onto its ring around the fitted rims is smeared: its rims
+      // lean the pose along the smear even when they fit well enough to pass the rms.
+      MarkerFitness::SphereScores at_rims, ring_at_rims;
+      fitness_.sphere_scores(T, at_rims, &ring_at_rims);
+      double spill = 0.0;
+      for (const auto& view : ring_at_rims) {
+        for (double r : view) spill = std::max(spill, r);
+      }
       if (weakest >= params_.rim_support && fit.rms_px <= params_.rim_sharp_rms_px &&
-          f >= params_.recognition_threshold && f >= estimate.fitness - 0.15) {
+          spill <= params_.rim_ring_max && f >= params_.recognition_threshold &&
+          f >= estimate.fitness - 0.15) {
         estimate.T_cl_marker = T;
         estimate.fitness = f;
         estimate.rim_refined = true;
