@@ -234,6 +234,11 @@ void describe(hal::ParamVisitor& v, MissionParams& p) {
           {"s", 0.0, 60.0,
            "partial view in DOCK (a sphere hidden or half out of the frame): the push holds where "
            "it is for up to this long, then ABORT"});
+  v.param("partial_view_attitude_s", p.partial_view_attitude_s,
+          {"s", 0.0, 60.0,
+           "a partial view's marker rotation comes from the attitude sensor and the last full "
+           "view for up to this long (the heading drifts); DOCK steers on a partial view only so "
+           "aided. 0: off"});
   v.param("dock_blind_distance_m", p.dock_blind_distance_m,
           {"m", 0.0, 2.0, "remaining distance within which losing the marker does not abort"});
   v.param("dock_blind_push_n", p.dock_blind_push_n,

@@ -243,6 +243,9 @@ struct MissionParams {
   int dock_abort_frames = 3;
   double dock_timeout_s = 40.0;
   double dock_partial_timeout_s = 4.0;  // partial view in DOCK: the push waits this long
+  // A partial view's rotation from the attitude sensor, remembered at the last full view, for
+  // this long (0: never; the partial pose itself is then not steered on in DOCK).
+  double partial_view_attitude_s = 6.0;
   // Near the socket the marker leaves the cameras' view: within this remaining distance a lost
   // marker does not abort, the vehicle pushes along the docking axis for up to blind_timeout_s.
   double dock_blind_distance_m = 0.15;

@@ -324,14 +324,18 @@ MissionOutput Mission::update(const MissionInput& in) {
       out.use_override = !seen;  // brief loss: hold (feed-forward only)
       break;
     case MissionState::dock: {
-      // On a partial view the push waits where it is, held by the servo on what is seen (as
-      // APPROACH is), until the view is whole again or dock_partial_timeout_s runs out.
+      // On a partial view the push waits where it is until the view is whole again or
+      // dock_partial_timeout_s runs out, held by the servo only when the pose's rotation comes
+      // from the attitude sensor, else by the hold (the trim against the current): the
+      // estimator's own pose on two spheres has no error bound and its yaw was 5-40 deg off in
+      // the sim's occluders scenario; servoing on it 0.4 m out turned the vehicle past the yaw
+      // limit, and holding alone let the current carry it 30 mm off the axis in 2 s.
       if (seen_dock) dock_pushed_ += tick;
       const double back = std::max(dock_start_back_m_ - p_.dock_speed_mps * seconds(dock_pushed_),
                                    -p_.dock_overshoot_m);
       out.T_cl_marker_desired = offset_along_docking_axis(T_docked_, back);
-      out.servo_active = seen;
-      out.use_override = !seen;
+      out.servo_active = seen_dock || (seen && in.attitude_aided);
+      out.use_override = !out.servo_active;
       // A re-seat keeps pressing while it slides back in.
       if (charging_started_)
         out.push_body.head<3>() = docked_axis_body_ * p_.recharge.charge_push_n;

@@ -39,6 +39,9 @@ struct MissionInput {
   // the blind zone at the end of the push a partial view is all there is).
   bool full_view = false;
   double fitness = 0.0;  // the estimate's fitness (also gated by min_fitness)
+  // On a partial view: T_cl_marker's rotation is the attitude sensor's since the last full view
+  // (AttitudeAidedPose), so DOCK may steer on it while its push waits.
+  bool attitude_aided = false;
   Eigen::Isometry3d T_cl_marker = Eigen::Isometry3d::Identity();
   bool contact = false;  // contact switch if the vehicle has one; the sim reports it
   // The recharging mission's inputs: battery and charger (from hal::Sensors), the horizontal

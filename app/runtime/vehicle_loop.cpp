@@ -3,6 +3,7 @@
 #include "app/runtime/vehicle_loop.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -73,6 +74,9 @@ VehicleLoop::VehicleLoop(const AppConfig& config, const hal::StereoRig& rig,
                                        config.station),
                config.vehicle.probe_tip_body_m),
       failsafe_(config.control.failsafe),
+      aided_pose_(config.vehicle.T_body_cl(),
+                  std::chrono::duration_cast<std::chrono::nanoseconds>(
+                      std::chrono::duration<double>(config.mission.partial_view_attitude_s))),
       frame_monitor_(config.control.failsafe.dead_range_levels) {
   // Start-up allocations: the frame buffers at the calibrated size, the neutral command.
   frame_.left_bgr.create(rig.left.height_px, rig.left.width_px, CV_8UC3);
@@ -192,6 +196,23 @@ bool VehicleLoop::tick(const TickInfo& info) {
     in.full_view = seen && estimate_.ok;
     in.fitness = estimate_.fitness;
     in.T_cl_marker = estimate_.T_cl_marker;
+    const bool attitude = have_readings && readings_.attitude_valid &&
+                          readings_.q_world_body.coeffs().allFinite() &&
+                          readings_.q_world_body.norm() > 0.5;
+    if (in.full_view && attitude) {
+      aided_pose_.remember(now, readings_.q_world_body, estimate_.T_cl_marker);
+    } else if (seen && attitude) {
+      // The spheres the pose is supported by in both views fix the translation.
+      std::array<Eigen::Vector3d, control::AttitudeAidedPose::kMaxPoints> points;
+      int n = 0;
+      const double support = config_.estimator.sphere_support;
+      for (std::size_t s = 0; s < config_.marker.spheres.size() && s < points.size(); ++s) {
+        if (estimate_.sphere_scores[0][s] >= support && estimate_.sphere_scores[1][s] >= support)
+          points[n++] = config_.marker.spheres[s].centre_marker_m;
+      }
+      in.attitude_aided = aided_pose_.aid(now, readings_.q_world_body, estimate_.T_cl_marker,
+                                          points.data(), n, in.T_cl_marker);
+    }
     in.contact = contact;
     if (operator_link_ != nullptr) {
       if (operator_link_->take_abort() && !operator_hold_) {
@@ -247,7 +268,7 @@ bool VehicleLoop::tick(const TickInfo& info) {
       if (out.servo_active) {
         const std::chrono::nanoseconds dt =
             last_servo_time_.count() < 0 ? info.period : now - last_servo_time_;
-        wrench = servo_.update(estimate_.T_cl_marker, out.T_cl_marker_desired, dt);
+        wrench = servo_.update(in.T_cl_marker, out.T_cl_marker_desired, dt);
         last_servo_time_ = now;
       } else {
         // Keep the integral's trim (against the current) while the marker is briefly unseen.

@@ -15,6 +15,7 @@
 #include "app/runtime/frame_monitor.hpp"
 #include "app/runtime/operator_link.hpp"
 #include "app/runtime/telemetry.hpp"
+#include "control/attitude_aided_pose.hpp"
 #include "control/attitude_stabilizer.hpp"
 #include "control/control_allocation_pseudo_inverse.hpp"
 #include "control/failsafe.hpp"
@@ -120,6 +121,7 @@ class VehicleLoop {
   control::ThrusterHealth health_;
   control::Mission mission_;
   control::Failsafe failsafe_;
+  control::AttitudeAidedPose aided_pose_;
   FrameMonitor frame_monitor_;
   SpscRing<LoopEvent> events_{256};
 

@@ -44,8 +44,10 @@ class MissionTest : public ::testing::Test {
     in.fitness = fitness;
     in.T_cl_marker = T;
     in.contact = contact;
+    in.attitude_aided = attitude_aided;
     return m.update(in);
   }
+  bool attitude_aided = false;  // the next ticks' partial views have the attitude sensor's rotation
   MissionOutput blind(Mission& m) { return tick(m, false, Eigen::Isometry3d::Identity()); }
   static std::vector<std::string> drain(Mission& m) {
     std::vector<std::string> out;
@@ -143,10 +145,13 @@ TEST_F(MissionTest, ApproachesOnAPartialViewButNeverDocksOnOne) {
   for (int k = 0; k < params.align_hold_frames; ++k)
     tick(m, true, seen_at({params.standoff_m, 0, 0}));
   ASSERT_EQ(m.state(), MissionState::dock);
-  // Docking, still short of the blind zone: on a partial view the push waits where it is (the
-  // servo holds on what is seen), and aborts when the view stays partial too long.
+  // Docking, still short of the blind zone: on a partial view the push waits where it is, on the
+  // hold rather than the servo (a two-sphere pose's yaw is not to be steered on), and aborts when
+  // the view stays partial too long.
   out = tick(m, true, seen_at({params.standoff_m - 0.02, 0, 0}), false, 0.9, false);
-  EXPECT_TRUE(out.servo_active);
+  EXPECT_FALSE(out.servo_active) << "the servo steered on a partial view while docking";
+  EXPECT_TRUE(out.use_override);
+  EXPECT_TRUE(out.wrench_override_body.isZero()) << "the hold pushes nothing of its own";
   const Eigen::Vector3d held = out.T_cl_marker_desired.translation();
   const int waiting_ticks = static_cast<int>(params.dock_partial_timeout_s / 0.033);
   for (int k = 0; k < waiting_ticks - 2; ++k) {
@@ -161,6 +166,31 @@ TEST_F(MissionTest, ApproachesOnAPartialViewButNeverDocksOnOne) {
   EXPECT_EQ(m.state(), MissionState::abort);
   const std::vector<std::string> events = drain(m);
   EXPECT_EQ(events.back(), "dock>abort:partial view while docking");
+}
+
+// A partial view whose rotation is the attitude sensor's is steered on while the push waits, and
+// the dock still aborts if the view stays partial too long.
+TEST_F(MissionTest, DockSteersOnAnAttitudeAidedPartialViewWithoutPushing) {
+  Mission m = make();
+  to_approach(m);
+  for (int k = 0; k < params.align_hold_frames + 2; ++k)
+    tick(m, true, seen_at({params.standoff_m, 0, 0}));
+  ASSERT_EQ(m.state(), MissionState::dock);
+  MissionOutput out = tick(m, true, seen_at({params.standoff_m - 0.01, 0, 0}));
+  const Eigen::Vector3d held = out.T_cl_marker_desired.translation();
+  attitude_aided = true;
+  const int waiting_ticks = static_cast<int>(params.dock_partial_timeout_s / 0.033);
+  for (int k = 0; k < waiting_ticks - 2; ++k) {
+    out = tick(m, true, seen_at({params.standoff_m - 0.01, 0.005, 0}), false, 0.9, false);
+    ASSERT_TRUE(out.servo_active) << "tick " << k;
+    ASSERT_FALSE(out.use_override);
+    ASSERT_TRUE(out.T_cl_marker_desired.translation().isApprox(held, 1e-9))
+        << "the push advanced on a partial view";
+  }
+  for (int k = 0; k < 5 && m.state() == MissionState::dock; ++k)
+    out = tick(m, true, seen_at({params.standoff_m - 0.01, 0.005, 0}), false, 0.9, false);
+  EXPECT_EQ(m.state(), MissionState::abort);
+  EXPECT_EQ(drain(m).back(), "dock>abort:partial view while docking");
 }
 
 // A bar passing in front of the marker mid-dock: the push pauses and then goes on to contact.
