@@ -215,6 +215,11 @@ void describe(hal::ParamVisitor& v, MissionParams& p) {
           {"m", 0.0005, 1.0, "ALIGN: lateral error threshold"});
   v.param("align_axial_m", p.align_axial_m, {"m", 0.0005, 1.0, "ALIGN: axial error threshold"});
   v.param("align_yaw_rad", p.align_yaw_rad, {"rad", 0.0005, 1.0, "ALIGN: yaw error threshold"});
+  v.param("align_average_frames", p.align_average_frames,
+          {"frames", 1.0, 1000.0,
+           "ALIGN judges the signed errors exponentially averaged over about this many full "
+           "views (the estimate's frame-to-frame noise); each frame must still be within the "
+           "dock abort limits. 1: each frame alone"});
   v.param("align_hold_frames", p.align_hold_frames,
           {"frames", 1, 10000, "consecutive frames within the ALIGN thresholds before DOCK"});
   v.param("align_timeout_s", p.align_timeout_s,

@@ -231,6 +231,7 @@ struct MissionParams {
   double align_axial_m = 0.03;
   double align_yaw_rad = 0.04;
   int align_hold_frames = 20;
+  double align_average_frames = 10.0;  // the hold judges errors averaged over about this many
   double align_timeout_s = 60.0;
   // DOCK: the set-point advances along the docking axis at this speed to this far past the
   // socket mouth; the dock aborts when the error leaves these limits.

@@ -85,7 +85,7 @@ Mission::Errors Mission::errors(const Eigen::Isometry3d& T_cl_marker) const {
   const Eigen::Vector3d cp = (T_body_cl_ * T_cl_marker).inverse() * control_point_body_m_;
   const Eigen::Vector3d d = cp - cp_docked_marker_m_;
   const double yaw = pose_error_body(T_body_cl_, T_cl_marker, T_docked_, false)[5];
-  return {d.head<2>().norm(), d.z(), yaw};
+  return {d.head<2>().norm(), d.z(), yaw, d.x(), d.y()};
 }
 
 void Mission::push_event(const MissionEvent& e) {
@@ -129,6 +129,7 @@ void Mission::enter(MissionState to, std::chrono::nanoseconds now, const char* r
   state_ = to;
   entered_ = now;
   hold_frames_ = 0;
+  align_avg_valid_ = false;
   contact_frames_ = 0;
   dock_off_frames_ = 0;
   blind_since_ = std::chrono::nanoseconds{-1};
@@ -169,7 +170,7 @@ MissionOutput Mission::update(const MissionInput& in) {
   const bool seen =
       in.recognised && in.fitness >= p_.min_fitness && in.T_cl_marker.matrix().allFinite();
   MissionOutput out;
-  Errors err{0.0, 0.0, 0.0};
+  Errors err{0.0, 0.0, 0.0, 0.0, 0.0};
   if (seen) {
     ++seen_frames_;
     unseen_frames_ = 0;
@@ -223,14 +224,27 @@ MissionOutput Mission::update(const MissionInput& in) {
         enter(MissionState::align, in.now, "stand-off reached");
       }
       break;
-    case MissionState::align:
-      if (full && err.lateral_m <= p_.align_lateral_m &&
-          std::abs(err.axial_m + p_.standoff_m) <= p_.align_axial_m &&
-          std::abs(err.yaw_rad) <= p_.align_yaw_rad) {
-        ++hold_frames_;
-      } else {
-        hold_frames_ = 0;
+    case MissionState::align: {
+      // The hold is judged on the signed errors averaged over about align_average_frames full
+      // views: in the sim's noisy scenario the estimate's frame-to-frame rotation noise (0.8 deg
+      // median) put the probe's lateral error at 7 mm median, 16 mm p90, while the truth was
+      // 3.6 mm and 7.5 mm, and 20 frames in a row under 8 mm took minutes. Each frame must still
+      // be within the dock's abort limits.
+      bool within = false;
+      if (full) {
+        const Eigen::Vector4d e(err.lateral_x_m, err.lateral_y_m, err.axial_m + p_.standoff_m,
+                                err.yaw_rad);
+        align_avg_ = align_avg_valid_
+                         ? Eigen::Vector4d(align_avg_ + (e - align_avg_) / p_.align_average_frames)
+                         : e;
+        align_avg_valid_ = true;
+        within = err.lateral_m <= p_.dock_abort_lateral_m &&
+                 std::abs(err.yaw_rad) <= p_.dock_abort_yaw_rad &&
+                 align_avg_.head<2>().norm() <= p_.align_lateral_m &&
+                 std::abs(align_avg_.z()) <= p_.align_axial_m &&
+                 std::abs(align_avg_.w()) <= p_.align_yaw_rad;
       }
+      hold_frames_ = within ? hold_frames_ + 1 : 0;
       if (lost) {
         enter(MissionState::abort, in.now, "marker lost");
       } else if (hold_frames_ >= p_.align_hold_frames) {
@@ -240,6 +254,7 @@ MissionOutput Mission::update(const MissionInput& in) {
         enter(MissionState::abort, in.now, "align timed out");
       }
       break;
+    }
     case MissionState::dock: {
       const bool vision_contact = p_.contact_from_vision && seen_dock &&
                                   err.axial_m >= p_.vision_contact_depth_m &&

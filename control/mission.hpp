@@ -148,6 +148,7 @@ class Mission {
  private:
   struct Errors {
     double lateral_m, axial_m, yaw_rad;
+    double lateral_x_m, lateral_y_m;  // the lateral error's components in the marker frame
   };
   Errors errors(const Eigen::Isometry3d& T_cl_marker) const;
   void enter(MissionState to, std::chrono::nanoseconds now, const char* reason);
@@ -171,6 +172,9 @@ class Mission {
   int unseen_frames_ = 0;
   int partial_frames_ = 0;  // consecutive frames recognised on a partial view
   int hold_frames_ = 0;
+  // ALIGN's average of the signed errors (lateral x, y, axial from the stand-off, yaw).
+  Eigen::Vector4d align_avg_ = Eigen::Vector4d::Zero();
+  bool align_avg_valid_ = false;
   int contact_frames_ = 0;
   int dock_off_frames_ = 0;  // consecutive seen frames past the dock abort limits
   bool have_last_ = false;
