@@ -41,6 +41,10 @@ void describe(ParamVisitor& v, ContactParams& p) {
           {"m", 0.0, 0.5, "radius of the socket's bore at the capture depth (the funnel narrows)"});
   v.param("wall_band_m", p.wall_band_m,
           {"m", 0.0, 0.1, "how far beyond the funnel tolerance the wall catches the probe"});
+  v.param("face_half_size_m", p.face_half_size_m,
+          {"m", 0.05, 100.0,
+           "the station face: a square this far to each side of the socket (larger than the "
+           "plate the marker is on); a probe beside it touches nothing"});
 }
 
 void describe(ParamVisitor& v, CameraSimParams& p) {

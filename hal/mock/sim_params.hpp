@@ -52,6 +52,10 @@ struct ContactParams {
   bool socket_wall = false;
   double bore_radius_m = 0.005;
   double wall_band_m = 0.01;
+  // The station face is a square this far to each side of the socket: beyond it there is nothing
+  // to touch (an unbounded face counted a vehicle that had drifted 5 m aside while searching as
+  // touching the station).
+  double face_half_size_m = 0.5;
 };
 
 void describe(ParamVisitor& v, ContactParams& p);

@@ -115,6 +115,9 @@ Eigen::Vector3d SimulatedWorld::contact_force_world(const VehicleState& s, bool&
   const bool walled = c.socket_wall && d.z() > 0.0 && lateral > wall_radius_m &&
                       lateral <= c.lateral_tolerance_m + c.wall_band_m;
   const bool in_socket = lateral <= c.lateral_tolerance_m || walled;
+  const bool on_face =
+      std::abs(d.x()) <= c.face_half_size_m && std::abs(d.y()) <= c.face_half_size_m;
+  if (!in_socket && !on_face) return Eigen::Vector3d::Zero();  // beside the station
   const double penetration = in_socket ? d.z() - station_.capture_depth_m : d.z();
   const Eigen::Vector3d tip_velocity_world =
       R * (s.velocity_body_mps() + s.omega_body_radps().cross(tip));

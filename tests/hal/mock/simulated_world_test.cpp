@@ -86,8 +86,10 @@ TEST(SimulatedWorld, PoseHistoryInterpolatesThePast) {
 }
 
 // Drives along the docking axis with a pure surge force, with a lateral offset of the start.
-DockingTruth approach(double lateral_offset_m, double yaw_offset_rad) {
+DockingTruth approach(double lateral_offset_m, double yaw_offset_rad,
+                      double face_half_size_m = SimParams{}.contact.face_half_size_m) {
   SimParams p = test::still_water_params();
+  p.contact.face_half_size_m = face_half_size_m;
   const VehicleGeometry vehicle;
   SimulatedWorld world(p, vehicle, DockingStation{});
   Eigen::Isometry3d start = world.docked_T_world_body();
@@ -114,13 +116,26 @@ TEST(SimulatedWorld, CentredAlignedApproachDocks) {
 }
 
 TEST(SimulatedWorld, OffCentreApproachHitsTheFaceAndIsStopped) {
-  const DockingTruth d = approach(0.08, 0.0);
+  // A face wide enough that the pressing probe does not slide off its edge in the 5 s push (it
+  // slides 0.4 m down the frictionless face).
+  const DockingTruth d = approach(0.08, 0.0, 10.0);
   EXPECT_FALSE(d.docked);
   EXPECT_TRUE(d.collided);
   EXPECT_TRUE(d.contact);  // still pressing
   EXPECT_GT(d.max_contact_force_n, 5.0);
   // The face holds it: only the small spring compression past the socket mouth.
   EXPECT_GT(d.axial_distance_m, -0.02);
+}
+
+// Beside the station face there is nothing to touch: the probe passes its plane.
+TEST(SimulatedWorld, AnApproachBesideTheStationFaceTouchesNothing) {
+  const double face = SimParams{}.contact.face_half_size_m;
+  const DockingTruth beside = approach(face + 0.1, 0.0);
+  EXPECT_FALSE(beside.contact);
+  EXPECT_FALSE(beside.collided);
+  EXPECT_LT(beside.axial_distance_m, -0.05) << "the probe did not pass the face's plane";
+  const DockingTruth on_face = approach(face - 0.1, 0.0);
+  EXPECT_TRUE(on_face.collided) << "a touch on the face, off the socket, is a collision";
 }
 
 TEST(SimulatedWorld, MisalignedApproachIsNotDocked) {
