@@ -358,6 +358,38 @@ TEST_F(MissionTest, DockPushesBlindNearTheSocket) {
   EXPECT_EQ(out.state, MissionState::docked);
 }
 
+// In the blind zone a partial view whose rotation is the estimator's own (no sphere in both views
+// for the attitude aid) is pushed through blind, not steered on; an aided one is steered on.
+TEST_F(MissionTest, InTheBlindZoneAnUnaidedPartialViewIsPushedBlind) {
+  Mission m = make();
+  to_dock(m);
+  tick(m, true, seen_at({0.5 * params.dock_blind_distance_m, 0, 0}));
+  // A two-sphere pose 30 deg off in yaw: steered on, it would turn the vehicle; judged, it
+  // would abort on the yaw limit.
+  MissionOutput out;
+  for (int k = 0; k < 3 * params.dock_abort_frames; ++k) {
+    out =
+        tick(m, true, seen_at({0.4 * params.dock_blind_distance_m, 0, 0}, 0.52), false, 0.9, false);
+    ASSERT_EQ(out.state, MissionState::dock) << "tick " << k;
+    ASSERT_FALSE(out.servo_active) << "tick " << k;
+    ASSERT_TRUE(out.use_override);
+    ASSERT_NEAR(out.wrench_override_body[0], params.dock_blind_push_n, 1e-9);
+  }
+  attitude_aided = true;
+  out = tick(m, true, seen_at({0.4 * params.dock_blind_distance_m, 0.002, 0}), false, 0.9, false);
+  EXPECT_TRUE(out.servo_active) << "an aided partial view in the blind zone is steered on";
+  EXPECT_FALSE(out.use_override);
+  attitude_aided = false;
+  // The blind push's own limit still ends it.
+  const auto t0 = now;
+  while (m.state() == MissionState::dock && now - t0 < 60s) {
+    tick(m, true, seen_at({0.4 * params.dock_blind_distance_m, 0, 0}, 0.52), false, 0.9, false);
+  }
+  EXPECT_EQ(m.state(), MissionState::abort);
+  EXPECT_NEAR(std::chrono::duration<double>(now - t0).count(), params.dock_blind_timeout_s, 0.1);
+  EXPECT_EQ(drain(m).back(), "dock>abort:no contact after blind push");
+}
+
 TEST_F(MissionTest, BlindPushTimesOut) {
   Mission m = make();
   to_dock(m);
