@@ -15,6 +15,9 @@ void EstimatorParams::validate() const {
   ordered(search.x_min_m, search.x_max_m, "x");
   ordered(search.y_min_m, search.y_max_m, "y");
   ordered(search.z_min_m, search.z_max_m, "z");
+  if (denoise_retry_px != 0 && denoise_retry_px != 3 && denoise_retry_px != 5) {
+    throw std::invalid_argument("estimator.denoise_retry_px must be 0 (off), 3 or 5");
+  }
   if (ga.elite_count >= ga.population) {
     throw std::invalid_argument("estimator.ga.elite_count must be below estimator.ga.population");
   }
@@ -53,6 +56,11 @@ void describe(hal::ParamVisitor& v, EstimatorParams& p) {
            "improved mode: a frame whose estimate is not ok is segmented again white-balanced "
            "with this strength (as water_correction) and kept if that estimate is ok; the red "
            "sphere far out in coastal water; 0 off"});
+  v.param("denoise_retry_px", p.denoise_retry_px,
+          {"px", 0, 5,
+           "improved mode: a frame whose estimate is still not ok after the second look is "
+           "median-filtered with this aperture (3 or 5) and looked at once more, kept if ok: "
+           "sensor noise and JPEG blocks break a small sphere's rim into specks; 0 off"});
   v.param("sphere_support", p.sphere_support,
           {"-", 0.0, 1.0,
            "score of one sphere in one view (inner hits minus ring hits) at which it counts as "

@@ -91,6 +91,9 @@ struct EstimatorParams {
   // Improved mode: a frame whose estimate is not ok is segmented again with this correction (the
   // same scale) and estimated once more; that estimate is kept only if it is ok. 0 off.
   double water_retry = 0.5;
+  // Improved mode: and if that is not ok either, the pair median-filtered with this aperture is
+  // looked at once more, kept only if ok. 0 off.
+  int denoise_retry_px = 5;
   // Improvements (used when mode is "improved").
   bool blob_seeding = true;  // seed individuals from colour blobs triangulated in 3D
   bool refine_elite = true;  // least-squares refinement of the elite on blob centroids

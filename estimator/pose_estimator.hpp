@@ -52,6 +52,9 @@ struct PoseEstimate {
   // Improved mode: this estimate came from the second look, the pair segmented again white-
   // balanced to the water's cast (EstimatorParams::water_retry), after the first was not ok.
   bool water_corrected = false;
+  // Improved mode: this estimate came from the third look, the pair median-filtered
+  // (EstimatorParams::denoise_retry_px), after the first two were not ok.
+  bool denoised = false;
   bool ok = false;
   int generations = 0;  // generations run this frame
   std::chrono::nanoseconds compute_time{0};
@@ -73,7 +76,8 @@ class PoseEstimator {
   bool segment(const cv::Mat& left_bgr, const cv::Mat& right_bgr);
   // Evolves the carried-over population on the last segmented pair within the frame budget,
   // which counts from the start of segment(); then, if that is not ok and water_retry is on,
-  // once more on the pair segmented in the water's colour.
+  // once more on the pair segmented in the water's colour, and if that is not ok either and
+  // denoise_retry_px is on, once more on the median-filtered pair.
   PoseEstimate estimate();
   void reset();  // fresh random population (marker lost / new search)
 
@@ -97,6 +101,7 @@ class PoseEstimator {
   PoseEstimate estimate_on_labels();
 
   cv::Mat labels_[2];
+  cv::Mat denoised_[2];  // the third look's median-filtered pair, allocated at construction
   const cv::Mat* images_[2] = {nullptr, nullptr};  // the last segment()'s, for the second look
   long extra_evaluations_ = 0;
   std::chrono::steady_clock::time_point frame_start_{};

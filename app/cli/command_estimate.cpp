@@ -106,6 +106,7 @@ int command_estimate(const Words& words) {
                                                      : (estimate.refined ? "centroids" : "none")))
         .field("refine_rms_px", estimate.rim_refined ? estimate.rim_rms_px : estimate.refine_rms_px)
         .field("water_corrected", estimate.water_corrected)
+        .field("denoised", estimate.denoised)
         .begin_array("rim_support")
         .begin_array()
         .value(estimate.rim_support[0][0])
