@@ -76,22 +76,26 @@ bool PoseEstimator::segment(const cv::Mat& left_bgr, const cv::Mat& right_bgr) {
 
 PoseEstimate PoseEstimator::estimate() {
   PoseEstimate first = estimate_on_labels();
-  if (first.ok || input_error_ != nullptr || !water_segmenter_) return first;
-  // Water takes red first: far out in coastal water the red sphere is a greyish brown under the
-  // hue windows. Balanced to the scene's cast it is red again, but the same balance moves clear
-  // water's colours, so it is a second look for a frame the first could not vouch for, and its
-  // estimate is taken only if it earns its own ok.
-  water_segmenter_->segment(*images_[0], labels_[0]);
-  water_segmenter_->segment(*images_[1], labels_[1]);
-  fitness_.update_far_field();
-  PoseEstimate second = estimate_on_labels();
-  if (second.ok) {
-    second.water_corrected = true;
-    second.generations += first.generations;
-    return second;
+  if (first.ok || input_error_ != nullptr) return first;
+  int generations = first.generations;
+  if (water_segmenter_) {
+    // Water takes red first: far out in coastal water the red sphere is a greyish brown under
+    // the hue windows. Balanced to the scene's cast it is red again, but the same balance moves
+    // clear water's colours, so it is a second look for a frame the first could not vouch for,
+    // and its estimate is taken only if it earns its own ok.
+    water_segmenter_->segment(*images_[0], labels_[0]);
+    water_segmenter_->segment(*images_[1], labels_[1]);
+    fitness_.update_far_field();
+    PoseEstimate second = estimate_on_labels();
+    if (second.ok) {
+      second.water_corrected = true;
+      second.generations += generations;
+      return second;
+    }
+    generations += second.generations;
+    first.compute_time = second.compute_time;
   }
-  first.compute_time = second.compute_time;
-  if (params_.denoise_retry_px <= 0) return first;
+  if (!params_.improved() || params_.denoise_retry_px <= 0) return first;
   // Sensor noise and JPEG's blocks break a small sphere's rim into specks: its rim fit then
   // fails the sharpness gate and the centroids' bound is loose, though the pose is right. A
   // median keeps edges where they are, so the rims it leaves can be fitted.
@@ -106,7 +110,7 @@ PoseEstimate PoseEstimator::estimate() {
     return first;
   }
   third.denoised = true;
-  third.generations += first.generations + second.generations;
+  third.generations += generations;
   return third;
 }
 

@@ -124,7 +124,8 @@ TEST(PoseEstimator, ASmearedSphereThatFillsItsDiscCountsAsSeen) {
   TestScene scene;
   std::mt19937_64 rng(5);
   EstimatorParams rule;
-  rule.water_retry = 0.0;  // the rule alone: no second look in the water's colour
+  rule.water_retry = 0.0;     // the rule alone: no second look in the water's colour,
+  rule.denoise_retry_px = 0;  // nor a third through a median
   EstimatorParams strict = rule;
   strict.smear_inner_min = 1.01;  // the rule off
   int ok = 0, ok_strict = 0, smeared = 0;
@@ -179,6 +180,7 @@ TEST(PoseEstimator, ASecondLookInTheWatersColourFindsTheFadedRedSphere) {
   const hal::mock::SceneRenderer right(scene.rig.right, scene.marker, scene.options, turbid);
   EstimatorParams once;
   once.water_retry = 0.0;
+  once.denoise_retry_px = 0;  // the first look alone
   std::mt19937_64 rng(17);
   int ok_once = 0, ok_twice = 0, corrected = 0;
   for (int trial = 0; trial < 10; ++trial) {
@@ -232,7 +234,9 @@ TEST(PoseEstimator, AThirdLookOnTheMedianFilteredPairSeesThroughNoiseAndJpeg) {
   };
   EstimatorParams two_looks;
   two_looks.denoise_retry_px = 0;
-  int ok_two = 0, ok_three = 0, denoised = 0, runs = 0;
+  EstimatorParams no_water_look;  // the third look does not hang on the second
+  no_water_look.water_retry = 0.0;
+  int ok_two = 0, ok_three = 0, denoised = 0, denoised_without_water_look = 0, runs = 0;
   for (const Pair& pair : pairs) {
     const std::string stem =
         std::string(ROVCTL_TEST_DATA_DIR) + "/estimator/noise_jpeg/" + pair.name;
@@ -244,11 +248,15 @@ TEST(PoseEstimator, AThirdLookOnTheMedianFilteredPairSeesThroughNoiseAndJpeg) {
     for (std::uint64_t seed = 0; seed < 3; ++seed, ++runs) {
       PoseEstimator without(rig, marker, two_looks, seed);
       PoseEstimator with(rig, marker, EstimatorParams{}, seed);
-      PoseEstimate a, b;
+      PoseEstimator median_only(rig, marker, no_water_look, seed);
+      PoseEstimate a, b, c;
       for (int frame = 0; frame < 10; ++frame) {  // as `rovctl bench --set` scores a pair
         a = without.update(l, r);
         b = with.update(l, r);
+        c = median_only.update(l, r);
       }
+      denoised_without_water_look += c.denoised ? 1 : 0;
+      EXPECT_FALSE(c.water_corrected);
       ok_two += a.ok ? 1 : 0;
       ok_three += b.ok ? 1 : 0;
       if (b.denoised) {
@@ -266,6 +274,7 @@ TEST(PoseEstimator, AThirdLookOnTheMedianFilteredPairSeesThroughNoiseAndJpeg) {
       "third)\n",
       ok_two, runs, ok_three, denoised);
   EXPECT_GE(denoised, runs / 2);
+  EXPECT_GE(denoised_without_water_look, runs / 2);
   EXPECT_GE(ok_three, ok_two + runs / 2);
 }
 
