@@ -89,10 +89,12 @@ void describe(hal::ParamVisitor& v, EstimatorParams& p) {
            "the pose along it)"});
   v.param("ok_bound_mm", p.ok_bound_mm,
           {"mm", 0.1, 1000.0,
-           "improved mode: an estimate is ok only when its 3-sigma position bound is within this"});
+           "improved mode: an estimate is ok only when its position error bound (the rims' 99 % "
+           "quantile, or 3 sigma of the centroids') is within this"});
   v.param("ok_bound_deg", p.ok_bound_deg,
           {"deg", 0.01, 180.0,
-           "improved mode: an estimate is ok only when its 3-sigma rotation bound is within this"});
+           "improved mode: an estimate is ok only when its rotation error bound (as ok_bound_mm) "
+           "is within this"});
   v.section("ga", "the genetic algorithm (paper's Table 2)", [&p](hal::ParamVisitor& s) {
     s.param("population", p.ga.population, {"-", 4, 2000, "number of genes"});
     s.param("selection_rate", p.ga.selection_rate,

@@ -8,6 +8,10 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "estimator/error_bound.hpp"
+#include "estimator/tilt_ambiguity.hpp"
+#include "hal/model/pose.hpp"
+
 namespace rovctl::estimator {
 namespace {
 
@@ -30,6 +34,7 @@ const char* image_error(const cv::Mat& image, const hal::CameraModel& camera) {
 PoseEstimator::PoseEstimator(const hal::StereoRig& rig, const hal::MarkerModel& marker,
                              const EstimatorParams& params, std::uint64_t seed)
     : rig_(rig),
+      marker_(marker),
       params_(validated(params)),
       segmenter_(marker, params_.improved() ? params_.water_correction : 0.0),
       codec_(params_.search, params_.ga_reading().coding == "gray"),
@@ -75,7 +80,7 @@ bool PoseEstimator::segment(const cv::Mat& left_bgr, const cv::Mat& right_bgr) {
 }
 
 PoseEstimate PoseEstimator::estimate() {
-  PoseEstimate first = estimate_on_labels();
+  PoseEstimate first = estimate_on_labels(Look::first);
   if (first.ok || input_error_ != nullptr) return first;
   int generations = first.generations;
   if (water_segmenter_) {
@@ -86,7 +91,7 @@ PoseEstimate PoseEstimator::estimate() {
     water_segmenter_->segment(*images_[0], labels_[0]);
     water_segmenter_->segment(*images_[1], labels_[1]);
     fitness_.update_far_field();
-    PoseEstimate second = estimate_on_labels();
+    PoseEstimate second = estimate_on_labels(Look::water);
     if (second.ok) {
       second.water_corrected = true;
       second.generations += generations;
@@ -104,7 +109,7 @@ PoseEstimate PoseEstimator::estimate() {
     segmenter_.segment(denoised_[v], labels_[v]);
   }
   fitness_.update_far_field();
-  PoseEstimate third = estimate_on_labels();
+  PoseEstimate third = estimate_on_labels(Look::denoised);
   if (!third.ok) {
     first.compute_time = third.compute_time;
     return first;
@@ -114,7 +119,29 @@ PoseEstimate PoseEstimator::estimate() {
   return third;
 }
 
-PoseEstimate PoseEstimator::estimate_on_labels() {
+void PoseEstimator::widen_to_mirror(const Eigen::Isometry3d& T, const Eigen::Isometry3d& T_mirror,
+                                    PoseEstimate& estimate) {
+  ++extra_evaluations_;
+  if (fitness_.evaluate(T_mirror) < params_.recognition_threshold) return;
+  const double apart_deg = hal::rotation_angle_rad(T.linear(), T_mirror.linear()) * 180.0 / M_PI;
+  const double apart_m = (T.translation() - T_mirror.translation()).norm();
+  if (apart_deg <= estimate.error_bound_deg && apart_m <= estimate.error_bound_m) return;
+  estimate.error_bound_deg = std::max(estimate.error_bound_deg, apart_deg);
+  estimate.error_bound_m = std::max(estimate.error_bound_m, apart_m);
+  estimate.mirror_fits = true;
+}
+
+double PoseEstimator::weakest_support(const RimFit& fit) const {
+  double weakest = 1.0;
+  for (int v = 0; v < 2; ++v) {
+    for (std::size_t s = 0; s < fitness_.sphere_count() && s < 3; ++s) {
+      weakest = std::min(weakest, fit.support[v][s]);
+    }
+  }
+  return weakest;
+}
+
+PoseEstimate PoseEstimator::estimate_on_labels(Look look) {
   using Clock = std::chrono::steady_clock;
   const Clock::time_point start = frame_start_;
   if (input_error_ != nullptr) {
@@ -175,10 +202,21 @@ PoseEstimate PoseEstimator::estimate_on_labels() {
         estimate.fitness = f;
         estimate.refined = true;
         estimate.refine_rms_px = report.rms_px;
-        estimate.error_bound_deg =
-            3.0 * std::sqrt(report.covariance.topLeftCorner<3, 3>().trace()) * 180.0 / M_PI;
-        estimate.error_bound_m =
-            3.0 * std::sqrt(report.covariance.bottomRightCorner<3, 3>().trace());
+        // The centroids' scatter understates their shading bias: the trace's 3 sigma, not a
+        // quantile. Their fit has the triangle's tilt ambiguity as the rims' does (below).
+        const ErrorBound bound = error_bound_3_sigma(report.covariance);
+        estimate.error_bound_deg = bound.deg;
+        estimate.error_bound_m = bound.m;
+        Eigen::Isometry3d T_mirror = mirrored_tilt(T, marker_);
+        RefineReport mirror;
+        if (refiner_.refine(blobs_.blobs(), T_mirror, 1.5, &mirror)) {
+          const double sigma2 =
+              std::pow(std::max(report.rms_px / std::sqrt(2.0), PoseRefiner::kCentroidNoisePx), 2);
+          if (fits_as_well(report.centroids * report.rms_px * report.rms_px / sigma2,
+                           mirror.centroids * mirror.rms_px * mirror.rms_px / sigma2)) {
+            widen_to_mirror(T, T_mirror, estimate);
+          }
+        }
         Gene gene;
         codec_.encode(T, gene);
         ga_.insert(gene, fitness_.search_score(codec_.decode(gene)));
@@ -194,12 +232,7 @@ PoseEstimate PoseEstimator::estimate_on_labels() {
     if (rim_.refine(labels_[0], labels_[1], T, &fit)) {
       // Trusted only when every sphere's rim is confirmed in both views over enough of its
       // length: a blurred or faded edge is no rim, and then the centroids' pose stands.
-      double weakest = 1.0;
-      for (int v = 0; v < 2; ++v) {
-        for (std::size_t s = 0; s < fitness_.sphere_count() && s < 3; ++s) {
-          weakest = std::min(weakest, fit.support[v][s]);
-        }
-      }
+      const double weakest = weakest_support(fit);
       const double f = fitness_.evaluate(T);
       ++extra_evaluations_;
       // A sphere whose colour spills onto its ring around the fitted rims is smeared: its rims
@@ -217,9 +250,27 @@ PoseEstimate PoseEstimator::estimate_on_labels() {
         estimate.fitness = f;
         estimate.rim_refined = true;
         estimate.rim_rms_px = fit.rms_px;
-        estimate.error_bound_deg =
-            3.0 * std::sqrt(fit.covariance.topLeftCorner<3, 3>().trace()) * 180.0 / M_PI;
-        estimate.error_bound_m = 3.0 * std::sqrt(fit.covariance.bottomRightCorner<3, 3>().trace());
+        // A 5 px median rounds a 14 px sphere's rim off by a bias its covariance does not know
+        // (a seed-3 noise + JPEG pair fitted 39 deg off inside a 3.5 deg quantile): the third
+        // look keeps the trace's 3 sigma.
+        const ErrorBound bound = look == Look::denoised ? error_bound_3_sigma(fit.covariance)
+                                                        : error_bound_99(fit.covariance);
+        estimate.error_bound_deg = bound.deg;
+        estimate.error_bound_m = bound.m;
+        estimate.mirror_fits = false;
+        // The covariance is local: it cannot see the triangle's other tilt about the line of
+        // sight, which at range the rims may fit as well (a flatter, or steeper, marker).
+        Eigen::Isometry3d T_mirror = mirrored_tilt(T, marker_);
+        RimFit mirror;
+        if (rim_.refine(labels_[0], labels_[1], T_mirror, &mirror) &&
+            weakest_support(mirror) >= params_.rim_support &&
+            mirror.rms_px <= params_.rim_sharp_rms_px) {
+          const double sigma2 = std::pow(std::max(fit.rms_px, RimRefiner::kEdgeNoisePx), 2);
+          if (fits_as_well(fit.independent_points * fit.rms_px * fit.rms_px / sigma2,
+                           mirror.independent_points * mirror.rms_px * mirror.rms_px / sigma2)) {
+            widen_to_mirror(T, T_mirror, estimate);
+          }
+        }
       }
       estimate.rim_support = fit.support;
     }

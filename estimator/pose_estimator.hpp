@@ -38,7 +38,8 @@ struct PoseEstimate {
   std::array<std::array<double, 3>, 2> sphere_scores{};     // score(v, s) at this pose
   std::array<std::array<double, 3>, 2> sphere_ring_hits{};  // each ring's share on colour
   // Improved mode: the pose was refined on the blobs' centroids (all spheres' blobs agree with one
-  // rigid marker within the refiner's residual gate), with a 3-sigma error bound from that fit.
+  // rigid marker within the refiner's residual gate), with an error bound from that fit: 3 sigma
+  // of the centroids' (whose shading bias the scatter understates), 99 % of the rims' (below).
   // NaN bounds when not refined (faithful mode: the fitness alone, no bound).
   bool refined = false;
   double refine_rms_px = std::numeric_limits<double>::quiet_NaN();
@@ -49,6 +50,10 @@ struct PoseEstimate {
   bool rim_refined = false;
   double rim_rms_px = std::numeric_limits<double>::quiet_NaN();
   std::array<std::array<double, 3>, 2> rim_support{};
+  // Improved mode: the centroids or the rims fit the triangle's other tilt about the line of sight
+  // as well (estimator/tilt_ambiguity), further off than the fit's own bound, which then reaches
+  // to that pose.
+  bool mirror_fits = false;
   // Improved mode: this estimate came from the second look, the pair segmented again white-
   // balanced to the water's cast (EstimatorParams::water_retry), after the first was not ok.
   bool water_corrected = false;
@@ -89,6 +94,7 @@ class PoseEstimator {
 
  private:
   hal::StereoRig rig_;
+  hal::MarkerModel marker_;
   EstimatorParams params_;
   HueSegmenter segmenter_;
   std::optional<HueSegmenter> water_segmenter_;  // improved mode with water_retry > 0
@@ -98,7 +104,14 @@ class PoseEstimator {
   BlobSeeder blobs_;
   PoseRefiner refiner_;
   RimRefiner rim_;
-  PoseEstimate estimate_on_labels();
+  enum class Look { first, water, denoised };  // which labels estimate_on_labels sees
+  PoseEstimate estimate_on_labels(Look look);
+  // When T_mirror, the triangle's other tilt, fits the data as well as T and is recognised, the
+  // estimate's error bound reaches to it.
+  void widen_to_mirror(const Eigen::Isometry3d& T, const Eigen::Isometry3d& T_mirror,
+                       PoseEstimate& estimate);
+  // The least rim support of any sphere in either view.
+  double weakest_support(const RimFit& fit) const;
 
   cv::Mat labels_[2];
   cv::Mat denoised_[2];  // the third look's median-filtered pair, allocated at construction

@@ -33,9 +33,10 @@ class PoseRefiner {
   static bool silhouette_centroid(const hal::CameraModel& camera, const Eigen::Vector3d& centre_m,
                                   double radius_m, Eigen::Vector2d& uv_px);
 
+  static constexpr double kCentroidNoisePx = 0.25;  // per coordinate, the least credited
+
  private:
   static constexpr int kMaxResiduals = 12;  // 2 views x 3 spheres x (u, v)
-  static constexpr double kCentroidNoisePx = 0.25;
   using Residuals = Eigen::Matrix<double, kMaxResiduals, 1>;
   bool residuals(const BlobSet& blobs, const Eigen::Isometry3d& T, Residuals& r) const;
 

@@ -22,10 +22,6 @@ struct Band {
 };
 constexpr std::array<Band, 2> kBands{{{4.0, 4.0}, {2.0, 3.0}}};
 constexpr double kHuberPx = 1.0;
-// Neighbouring rim points share pixels and the segmenter's bias, so they are not independent:
-// the covariance counts about this many independent points per silhouette.
-constexpr double kIndependentPerSilhouette = 8.0;
-constexpr double kEdgeNoisePx = 0.3;
 constexpr int kMinInliers = 40;
 
 // A number that orders directions as atan2 does, over (-2, 2] instead of (-pi, pi], without the
@@ -340,8 +336,9 @@ bool RimRefiner::refine(const cv::Mat& left_labels, const cv::Mat& right_labels,
     for (const auto& view : result.support) {
       for (double s : view) silhouettes += s > 0.0 ? 1 : 0;
     }
+    result.independent_points = kIndependentPerSilhouette * silhouettes;
     const double sigma_px = std::max(result.rms_px, kEdgeNoisePx) *
-                            std::sqrt(result.inliers / (kIndependentPerSilhouette * silhouettes));
+                            std::sqrt(result.inliers / result.independent_points);
     Matrix7 A;
     Vector7 g;
     if (normal_equations(T, r0, offset_px, A, g)) {

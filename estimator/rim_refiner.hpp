@@ -21,6 +21,8 @@ struct RimFit {
   // silhouette's part inside the image whose colour edge lies on it. A whole sphere ~1; half
   // hidden ~0.5; absent, or less than kMinVisibleRays of its rim inside the image, 0.
   std::array<std::array<double, 3>, 2> support{};
+  // The independent points the covariance counts: kIndependentPerSilhouette per rim seen.
+  double independent_points = 0.0;
   // Covariance of the pose's error, rotation vector (rad) then translation (m).
   Eigen::Matrix<double, 6, 6> covariance = Eigen::Matrix<double, 6, 6>::Zero();
 };
@@ -42,6 +44,10 @@ class RimRefiner {
   // inside the image, if that is at least a quarter of the rim (90 deg of arc).
   static constexpr int kMinVisibleRays = kRays / 4;
   static constexpr double kBorderMarginPx = 2.0;  // a rim closer to the border shows no edge
+  // Neighbouring rim points share pixels and the segmenter's bias, so they are not independent:
+  // the covariance counts about this many independent points per silhouette.
+  static constexpr double kIndependentPerSilhouette = 8.0;
+  static constexpr double kEdgeNoisePx = 0.3;  // the least noise a rim point is credited with
 
  private:
   static constexpr int kSpheres = 3;

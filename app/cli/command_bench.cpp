@@ -221,7 +221,7 @@ int bench_set(const AppConfig& config, const hal::StereoRig& rig, const std::str
           stderr,
           "%-44s %s %7.1f mm %6.1f deg  fitness %.3f  seen %d/%d  scores L %.2f %.2f "
           "%.2f R %.2f %.2f %.2f  ring L %.2f %.2f %.2f R %.2f %.2f %.2f  rim %s L %.2f %.2f %.2f "
-          "R %.2f %.2f %.2f  bound %.1f mm %.1f deg\n",
+          "R %.2f %.2f %.2f  bound %.1f mm %.1f deg%s\n",
           r.pair->left_png.c_str(), r.ok ? "ok     " : (r.partial ? "partial" : "none   "),
           r.translation_mm, r.rotation_deg, r.fitness, r.spheres_seen_left, r.spheres_seen_right,
           r.sphere_scores[0][0], r.sphere_scores[0][1], r.sphere_scores[0][2],
@@ -230,7 +230,7 @@ int bench_set(const AppConfig& config, const hal::StereoRig& rig, const std::str
           r.sphere_ring_hits[1][0], r.sphere_ring_hits[1][1], r.sphere_ring_hits[1][2],
           r.rim_refined ? "yes" : "no ", r.rim_support[0][0], r.rim_support[0][1],
           r.rim_support[0][2], r.rim_support[1][0], r.rim_support[1][1], r.rim_support[1][2],
-          r.error_bound_mm, r.error_bound_deg);
+          r.error_bound_mm, r.error_bound_deg, r.mirror_fits ? "  mirror fits" : "");
     }
   }
   if (json_out) {

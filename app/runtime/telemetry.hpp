@@ -62,7 +62,7 @@ struct TelemetryRecord {
   std::int32_t generations = 0;    // RM-GA generations this tick
   double fitness = kNaN;
   std::int32_t spheres_seen_left = 0, spheres_seen_right = 0;
-  double error_bound_m = kNaN;  // 3-sigma translation bound of the estimate, when refined
+  double error_bound_m = kNaN;  // translation error bound of the estimate, when refined
   std::array<double, 3> est_t_m{kNaN, kNaN, kNaN};
   std::array<double, 4> est_q_wxyz{kNaN, kNaN, kNaN, kNaN};
   std::array<double, 3> truth_t_m{kNaN, kNaN, kNaN};

@@ -147,6 +147,7 @@ std::vector<ConditionScore> score_validation_set(const hal::StereoRig& rig,
     r.sphere_scores = e.sphere_scores;
     r.sphere_ring_hits = e.sphere_ring_hits;
     r.rim_refined = e.rim_refined;
+    r.mirror_fits = e.mirror_fits;
     r.rim_support = e.rim_support;
     r.error_bound_mm = 1000.0 * e.error_bound_m;
     r.error_bound_deg = e.error_bound_deg;
