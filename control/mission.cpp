@@ -355,7 +355,7 @@ MissionOutput Mission::update(const MissionInput& in) {
       const double back = std::max(dock_start_back_m_ - p_.dock_speed_mps * seconds(dock_pushed_),
                                    -p_.dock_overshoot_m);
       out.T_cl_marker_desired = offset_along_docking_axis(T_docked_, back);
-      out.servo_active = steer_dock || (seen && in.attitude_aided);
+      out.servo_active = full || (seen && in.attitude_aided);  // steer_dock, and the aided wait
       out.use_override = !out.servo_active;
       // A re-seat keeps pressing while it slides back in.
       if (charging_started_)
