@@ -55,7 +55,7 @@ struct PairResult {
   std::array<std::array<double, 3>, 2> sphere_scores{};
   std::array<std::array<double, 3>, 2> sphere_ring_hits{};
   bool rim_refined = false;
-  bool mirror_fits = false;  // the rims fit the other tilt too: the bound reaches to it
+  bool mirror_fits = false;  // the images fit the other tilt too: the bound reaches to it
   std::array<std::array<double, 3>, 2> rim_support{};
   double error_bound_mm = 0.0, error_bound_deg = 0.0;
 };

@@ -7,6 +7,7 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "test_scene.hpp"
@@ -217,34 +218,51 @@ TEST(PoseEstimator, ASecondLookInTheWatersColourFindsTheFadedRedSphere) {
 namespace rovctl::estimator {
 namespace {
 
+// A committed pair of the water validation set (tests/data/estimator/NAME_{left,right}.png) and
+// its truth, estimated as `rovctl bench --set` scores a still pair: the estimate after 10 frames.
+struct WaterPair {
+  cv::Mat left, right;
+  Eigen::Isometry3d truth;
+};
+
+WaterPair read_water_pair(const std::string& name, const Eigen::Vector3d& t_cl_marker_m,
+                          const Eigen::Quaterniond& q_cl_marker) {
+  const std::string stem = std::string(ROVCTL_TEST_DATA_DIR) + "/estimator/" + name;
+  WaterPair pair{cv::imread(stem + "_left.png", cv::IMREAD_COLOR),
+                 cv::imread(stem + "_right.png", cv::IMREAD_COLOR),
+                 Eigen::Translation3d(t_cl_marker_m) * q_cl_marker.normalized()};
+  EXPECT_FALSE(pair.left.empty() || pair.right.empty()) << stem;
+  return pair;
+}
+
+PoseEstimate after_ten_frames(PoseEstimator& estimator, const WaterPair& pair) {
+  PoseEstimate e;
+  for (int frame = 0; frame < 10; ++frame) e = estimator.update(pair.left, pair.right);
+  return e;
+}
+
 // Two POV-Ray pairs of the validation set (seed 3, noise + JPEG, 1.3 m out; see
 // tests/data/README.md): the first two looks leave them partial, the third look, on the median-
 // filtered pair, vouches for them, and right.
 TEST(PoseEstimator, AThirdLookOnTheMedianFilteredPairSeesThroughNoiseAndJpeg) {
   const hal::StereoRig rig = load_stereo_calibration(testing::shipped_calibration_path());
   const hal::MarkerModel marker = hal::MarkerModel::standard();
-  struct Pair {
-    const char* name;
-    Eigen::Vector3d t_cl_marker_m;
-    Eigen::Quaterniond q_cl_marker;
-  };
-  const Pair pairs[] = {
-      {"002", {-0.17327, -0.403619, 1.27694}, {0.99630475, 0.01093526, 0.07218575, -0.04523804}},
-      {"013", {-0.079936, -0.092249, 1.297561}, {0.98971727, 0.13413628, 0.04740129, 0.01484281}},
+  const std::pair<const char*, WaterPair> pairs[] = {
+      {"002", read_water_pair("noise_jpeg/002", {-0.17327, -0.403619, 1.27694},
+                              {0.99630475, 0.01093526, 0.07218575, -0.04523804})},
+      {"013", read_water_pair("noise_jpeg/013", {-0.079936, -0.092249, 1.297561},
+                              {0.98971727, 0.13413628, 0.04740129, 0.01484281})},
   };
   EstimatorParams two_looks;
   two_looks.denoise_retry_px = 0;
   EstimatorParams no_water_look;  // the third look does not hang on the second
   no_water_look.water_retry = 0.0;
   int ok_two = 0, ok_three = 0, denoised = 0, denoised_without_water_look = 0, runs = 0;
-  for (const Pair& pair : pairs) {
-    const std::string stem =
-        std::string(ROVCTL_TEST_DATA_DIR) + "/estimator/noise_jpeg/" + pair.name;
-    const cv::Mat l = cv::imread(stem + "_left.png", cv::IMREAD_COLOR);
-    const cv::Mat r = cv::imread(stem + "_right.png", cv::IMREAD_COLOR);
-    ASSERT_FALSE(l.empty() || r.empty()) << stem;
-    const Eigen::Isometry3d truth =
-        Eigen::Translation3d(pair.t_cl_marker_m) * pair.q_cl_marker.normalized();
+  for (const auto& [name, pair] : pairs) {
+    ASSERT_FALSE(pair.left.empty() || pair.right.empty()) << name;
+    const cv::Mat& l = pair.left;
+    const cv::Mat& r = pair.right;
+    const Eigen::Isometry3d& truth = pair.truth;
     for (std::uint64_t seed = 0; seed < 3; ++seed, ++runs) {
       PoseEstimator without(rig, marker, two_looks, seed);
       PoseEstimator with(rig, marker, EstimatorParams{}, seed);
@@ -261,11 +279,11 @@ TEST(PoseEstimator, AThirdLookOnTheMedianFilteredPairSeesThroughNoiseAndJpeg) {
       ok_three += b.ok ? 1 : 0;
       if (b.denoised) {
         ++denoised;
-        EXPECT_TRUE(b.ok) << pair.name << ": a third look is kept only when it is ok";
+        EXPECT_TRUE(b.ok) << name << ": a third look is kept only when it is ok";
       }
       if (b.ok) {
-        EXPECT_LT(translation_error_mm(b.T_cl_marker, truth), 10.0) << pair.name;
-        EXPECT_LT(rotation_error_deg(b.T_cl_marker, truth), 5.0) << pair.name;
+        EXPECT_LT(translation_error_mm(b.T_cl_marker, truth), 10.0) << name;
+        EXPECT_LT(rotation_error_deg(b.T_cl_marker, truth), 5.0) << name;
       }
     }
   }
@@ -283,20 +301,14 @@ TEST(PoseEstimator, AThirdLookOnTheMedianFilteredPairSeesThroughNoiseAndJpeg) {
 // settles on the wrong tilt, 45 deg off. Whatever it settles on, its bound must reach the truth.
 TEST(PoseEstimator, TheBoundReachesTheOtherTiltWhenTheImagesFitItAsWell) {
   const hal::StereoRig rig = load_stereo_calibration(testing::shipped_calibration_path());
-  const hal::MarkerModel marker = hal::MarkerModel::standard();
-  const std::string stem = std::string(ROVCTL_TEST_DATA_DIR) + "/estimator/edge/022";
-  const cv::Mat l = cv::imread(stem + "_left.png", cv::IMREAD_COLOR);
-  const cv::Mat r = cv::imread(stem + "_right.png", cv::IMREAD_COLOR);
-  ASSERT_FALSE(l.empty() || r.empty()) << stem;
-  const Eigen::Isometry3d truth =
-      Eigen::Translation3d(-0.323219, -0.476856, 1.259608) *
-      Eigen::Quaterniond(0.96479046, 0.17103575, -0.19980979, 0.00148008).normalized();
+  const WaterPair pair = read_water_pair("edge/022", {-0.323219, -0.476856, 1.259608},
+                                         {0.96479046, 0.17103575, -0.19980979, 0.00148008});
+  ASSERT_FALSE(pair.left.empty() || pair.right.empty());
   int wrong_tilt = 0, widened = 0;
   for (std::uint64_t seed = 0; seed < 3; ++seed) {
-    PoseEstimator estimator(rig, marker, EstimatorParams{}, seed);
-    PoseEstimate e;
-    for (int frame = 0; frame < 10; ++frame) e = estimator.update(l, r);
-    const double off_deg = rotation_error_deg(e.T_cl_marker, truth);
+    PoseEstimator estimator(rig, hal::MarkerModel::standard(), EstimatorParams{}, seed);
+    const PoseEstimate e = after_ten_frames(estimator, pair);
+    const double off_deg = rotation_error_deg(e.T_cl_marker, pair.truth);
     ASSERT_TRUE(e.recognised);
     if (off_deg < 5.0) continue;
     ++wrong_tilt;
@@ -313,24 +325,18 @@ TEST(PoseEstimator, TheBoundReachesTheOtherTiltWhenTheImagesFitItAsWell) {
 // The 99 % quantile of the same covariance is what the limit means.
 TEST(PoseEstimator, TheRimsQuantileBoundVouchesForAShadowedMarker) {
   const hal::StereoRig rig = load_stereo_calibration(testing::shipped_calibration_path());
-  const hal::MarkerModel marker = hal::MarkerModel::standard();
-  const std::string stem = std::string(ROVCTL_TEST_DATA_DIR) + "/estimator/side_light/004";
-  const cv::Mat l = cv::imread(stem + "_left.png", cv::IMREAD_COLOR);
-  const cv::Mat r = cv::imread(stem + "_right.png", cv::IMREAD_COLOR);
-  ASSERT_FALSE(l.empty() || r.empty()) << stem;
-  const Eigen::Isometry3d truth =
-      Eigen::Translation3d(0.396253, -0.030454, 1.106398) *
-      Eigen::Quaterniond(0.98701976, -0.13522834, 0.02919707, 0.08156486).normalized();
+  const WaterPair pair = read_water_pair("side_light/004", {0.396253, -0.030454, 1.106398},
+                                         {0.98701976, -0.13522834, 0.02919707, 0.08156486});
+  ASSERT_FALSE(pair.left.empty() || pair.right.empty());
   int ok = 0;
   for (std::uint64_t seed = 0; seed < 3; ++seed) {
-    PoseEstimator estimator(rig, marker, EstimatorParams{}, seed);
-    PoseEstimate e;
-    for (int frame = 0; frame < 10; ++frame) e = estimator.update(l, r);
+    PoseEstimator estimator(rig, hal::MarkerModel::standard(), EstimatorParams{}, seed);
+    const PoseEstimate e = after_ten_frames(estimator, pair);
     ok += e.ok ? 1 : 0;
     if (e.ok) {
       EXPECT_TRUE(e.rim_refined);
-      EXPECT_LT(translation_error_mm(e.T_cl_marker, truth), 10.0) << "seed " << seed;
-      EXPECT_LT(rotation_error_deg(e.T_cl_marker, truth), 5.0) << "seed " << seed;
+      EXPECT_LT(translation_error_mm(e.T_cl_marker, pair.truth), 10.0) << "seed " << seed;
+      EXPECT_LT(rotation_error_deg(e.T_cl_marker, pair.truth), 5.0) << "seed " << seed;
     }
   }
   EXPECT_GE(ok, 2);
