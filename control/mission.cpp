@@ -138,6 +138,7 @@ void Mission::enter(MissionState to, std::chrono::nanoseconds now, const char* r
   unseated_since_ = no_current_since_ = overload_since_ = swing_since_ =
       std::chrono::nanoseconds{-1};
   backed_off_ = false;
+  back_off_ = true;
   if (to == MissionState::search) seen_frames_ = 0;
   if (to == MissionState::charging && !charging_started_) {
     charging_started_ = true;
@@ -147,6 +148,16 @@ void Mission::enter(MissionState to, std::chrono::nanoseconds now, const char* r
     push_event({now, state_, MissionState::failed, "retries exhausted", aborts_});
     state_ = MissionState::failed;
   }
+}
+
+void Mission::lost_at_standoff(std::chrono::nanoseconds now) {
+  // APPROACH and ALIGN steer to the stand-off, short of the station, so the probe is not where a
+  // back-off must pull it from; and backing off blind takes the vehicle beyond the range the
+  // marker can be seen at in turbid water: in the sim's murky water (red extinction 1.6 /m) a
+  // loss 0.75 m out backed off to 1.5 m, and the search never saw the marker again. So the abort
+  // counts, and the search turns from where the vehicle is.
+  enter(MissionState::abort, now, "marker lost");
+  back_off_ = false;
 }
 
 void Mission::restart(std::chrono::nanoseconds now, const char* reason) {
@@ -220,7 +231,7 @@ MissionOutput Mission::update(const MissionInput& in) {
       break;
     case MissionState::approach:
       if (lost) {
-        enter(MissionState::abort, in.now, "marker lost");
+        lost_at_standoff(in.now);
       } else if (t_state > p_.approach_timeout_s) {
         enter(MissionState::abort, in.now, "approach timed out");
       } else if (seen && err.lateral_m <= p_.approach_lateral_m &&
@@ -251,7 +262,7 @@ MissionOutput Mission::update(const MissionInput& in) {
       }
       hold_frames_ = within ? hold_frames_ + 1 : 0;
       if (lost) {
-        enter(MissionState::abort, in.now, "marker lost");
+        lost_at_standoff(in.now);
       } else if (hold_frames_ >= p_.align_hold_frames) {
         dock_start_back_m_ = p_.standoff_m;
         enter(MissionState::dock, in.now, "aligned");
@@ -294,9 +305,10 @@ MissionOutput Mission::update(const MissionInput& in) {
       break;
     }
     case MissionState::abort:
-      if (t_state >= p_.abort_backoff_s) {
+      if (t_state >= (back_off_ ? p_.abort_backoff_s : 0.0)) {
         backed_off_ = true;
-        if (!final_abort_) enter(MissionState::search, in.now, "backed off");
+        if (!final_abort_)
+          enter(MissionState::search, in.now, back_off_ ? "backed off" : "searching from here");
       }
       break;
     case MissionState::charging:
@@ -369,7 +381,7 @@ MissionOutput Mission::update(const MissionInput& in) {
       out.use_override = true;
       if (final_abort_ && backed_off_) {
         out.thrusters_enabled = false;
-      } else {
+      } else if (back_off_) {
         out.wrench_override_body[0] = -p_.abort_backoff_force_n;
       }
       break;

@@ -152,6 +152,8 @@ class Mission {
   };
   Errors errors(const Eigen::Isometry3d& T_cl_marker) const;
   void enter(MissionState to, std::chrono::nanoseconds now, const char* reason);
+  // APPROACH or ALIGN lost the marker: an abort that searches at once, without backing off.
+  void lost_at_standoff(std::chrono::nanoseconds now);
   void charging(const MissionInput& in, bool seen_dock, const Errors& err);
   void start_undock(std::chrono::nanoseconds now, const char* reason);
   void push_event(const MissionEvent& e);
@@ -194,6 +196,7 @@ class Mission {
   bool final_abort_ = false;
   bool search_timed_out_ = false;
   bool backed_off_ = false;  // ABORT's back-off time is over
+  bool back_off_ = true;     // this ABORT backs off (not one for a marker lost at the stand-off)
   bool departed_hold_ = false;
   bool keep_axial_trim_ = false;     // the next output asks to keep the axial trim
   bool restore_axial_trim_ = false;  // ... to restore it

@@ -217,7 +217,7 @@ TEST_F(MissionTest, APassingOccluderPausesTheDockWithoutAborting) {
   EXPECT_EQ(m.aborts(), 0);
 }
 
-TEST_F(MissionTest, MarkerLostMidApproachAbortsBacksOffAndSearchesAgain) {
+TEST_F(MissionTest, MarkerLostMidApproachAbortsAndSearchesAtOnceWithoutBackingOff) {
   Mission m = make();
   to_approach(m);
   tick(m, true, seen_at({1.5, 0.1, 0.0}));
@@ -232,17 +232,14 @@ TEST_F(MissionTest, MarkerLostMidApproachAbortsBacksOffAndSearchesAgain) {
   EXPECT_EQ(out.state, MissionState::abort);
   EXPECT_EQ(m.aborts(), 1);
   EXPECT_TRUE(out.use_override);
-  EXPECT_DOUBLE_EQ(out.wrench_override_body[0], -params.abort_backoff_force_n);
-  // Backs off for abort_backoff_s, even if the marker reappears, then searches again.
-  const auto t_abort = now;
-  while (now - t_abort < std::chrono::duration<double>(params.abort_backoff_s) - 33ms) {
-    out = tick(m, true, seen_at({1.5, 0.0, 0.0}));
-    ASSERT_EQ(out.state, MissionState::abort);
-  }
+  EXPECT_TRUE(out.wrench_override_body.isZero()) << "no back-off short of the station";
   out = blind(m);
   EXPECT_EQ(out.state, MissionState::search);
-  const std::vector<std::string> expected = {
-      "search>approach:marker recognised", "approach>abort:marker lost", "abort>search:backed off"};
+  EXPECT_DOUBLE_EQ(out.wrench_override_body[5], params.search_yaw_moment_nm);
+  EXPECT_DOUBLE_EQ(out.wrench_override_body[0], 0.0);
+  const std::vector<std::string> expected = {"search>approach:marker recognised",
+                                             "approach>abort:marker lost",
+                                             "abort>search:searching from here"};
   EXPECT_EQ(drain(m), expected);
   // And a second acquisition restarts the servo.
   for (int k = 0; k < params.acquire_frames; ++k) out = tick(m, true, seen_at({1.0, 0, 0}));
@@ -312,8 +309,18 @@ TEST_F(MissionTest, DockAbortsOnLateralAndYawLimits) {
       tick(m, true, seen_at({0.3, 0, 1.5 * params.dock_abort_lateral_m}));
       EXPECT_EQ(m.state(), MissionState::dock);
     }
-    tick(m, true, seen_at({0.3, 0, 1.5 * params.dock_abort_lateral_m}));
+    MissionOutput out = tick(m, true, seen_at({0.3, 0, 1.5 * params.dock_abort_lateral_m}));
     EXPECT_EQ(m.state(), MissionState::abort);
+    // Near the station the abort backs off for abort_backoff_s, even with the marker in view.
+    const auto t_abort = now;
+    while (now - t_abort < std::chrono::duration<double>(params.abort_backoff_s) - 33ms) {
+      EXPECT_DOUBLE_EQ(out.wrench_override_body[0], -params.abort_backoff_force_n);
+      out = tick(m, true, seen_at({0.3, 0, 0}));
+      ASSERT_EQ(out.state, MissionState::abort);
+    }
+    out = blind(m);
+    EXPECT_EQ(out.state, MissionState::search);
+    EXPECT_EQ(drain(m).back(), "abort>search:backed off");
   }
   {
     Mission m = make();
@@ -455,7 +462,7 @@ TEST_F(MissionTest, EventQueueKeepsTheNewest) {
   EXPECT_EQ(m.dropped_events(), 60 - Mission::kEventCapacity);
   const std::vector<std::string> ev = drain(m);
   EXPECT_EQ(ev.size(), Mission::kEventCapacity);
-  EXPECT_EQ(ev.back(), "abort>search:backed off");
+  EXPECT_EQ(ev.back(), "abort>search:searching from here");
 }
 
 TEST_F(MissionTest, StandOffLiesBackAlongTheDockingAxis) {
