@@ -259,7 +259,10 @@ void describe(hal::ParamVisitor& v, MissionParams& p) {
           {"frames", 1, 1000, "consecutive frames of contact that end DOCK"});
   v.param("abort_backoff_force_n", p.abort_backoff_force_n,
           {"N", 0.0, 200.0, "backward force while backing off in ABORT"});
-  v.param("abort_backoff_s", p.abort_backoff_s, {"s", 0.0, 60.0, "duration of the back-off"});
+  v.param("abort_backoff_s", p.abort_backoff_s,
+          {"s", 0.0, 60.0,
+           "duration of the back-off; none after a marker lost in APPROACH or ALIGN, short of the "
+           "station, which searches at once"});
   v.param("max_retries", p.max_retries,
           {"-", 0, 100, "aborts allowed; one more and the mission fails"});
 }
