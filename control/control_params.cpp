@@ -198,7 +198,9 @@ void describe(hal::ParamVisitor& v, MissionParams& p) {
   v.param("lost_frames", p.lost_frames,
           {"frames", 1, 1000, "consecutive unrecognised frames that abort APPROACH/ALIGN/DOCK"});
   v.param("search_yaw_moment_nm", p.search_yaw_moment_nm,
-          {"N m", -20.0, 20.0, "yaw moment of the SEARCH scan (sign: direction)"});
+          {"N m", -20.0, 20.0,
+           "yaw moment of the SEARCH scan; its sign is the direction until the marker has been "
+           "seen, then the scan turns toward the side the marker was last seen on"});
   v.param("search_timeout_s", p.search_timeout_s,
           {"s", 1.0, 86400.0, "SEARCH time after which the failsafe trips (search_time)"});
   v.param("standoff_m", p.standoff_m,

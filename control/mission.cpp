@@ -192,6 +192,8 @@ MissionOutput Mission::update(const MissionInput& in) {
     out.yaw_error_rad = err.yaw_rad;
     have_last_ = true;
     last_axial_m_ = err.axial_m;
+    const Eigen::Vector3d marker_body_m = T_body_cl_ * in.T_cl_marker.translation();
+    last_bearing_starboard_ = marker_body_m.y() >= 0.0;
   } else {
     seen_frames_ = 0;
     ++unseen_frames_;
@@ -347,7 +349,12 @@ MissionOutput Mission::update(const MissionInput& in) {
   switch (state_) {
     case MissionState::search:
       out.use_override = true;
-      out.wrench_override_body[5] = p_.search_yaw_moment_nm;
+      // Turned toward where the marker was last seen: it left the view on that side (a current
+      // set the vehicle off, a turn overshot), and turning away costs a whole scan to find it.
+      // Never seen since the start: the configured direction.
+      out.wrench_override_body[5] =
+          have_last_ ? std::copysign(p_.search_yaw_moment_nm, last_bearing_starboard_ ? 1.0 : -1.0)
+                     : p_.search_yaw_moment_nm;
       break;
     case MissionState::approach:
     case MissionState::align:

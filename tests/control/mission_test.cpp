@@ -247,6 +247,25 @@ TEST_F(MissionTest, MarkerLostMidApproachAbortsAndSearchesAtOnceWithoutBackingOf
   EXPECT_TRUE(out.servo_restart);
 }
 
+// The scan turns toward the side the marker left the view on; before it was ever seen, the
+// configured way.
+TEST_F(MissionTest, SearchTurnsTowardWhereTheMarkerWasLastSeen) {
+  for (const double configured_nm : {0.6, -0.6}) {
+    params.search_yaw_moment_nm = configured_nm;
+    for (const double side_m : {-0.3, 0.3}) {
+      Mission m = make();
+      EXPECT_DOUBLE_EQ(blind(m).wrench_override_body[5], configured_nm) << "never seen";
+      to_approach(m);
+      tick(m, true, seen_at({1.0, side_m, 0.0}));
+      MissionOutput out;
+      while (m.state() != MissionState::search) out = blind(m);
+      // Body +y is starboard, and a positive moment about body z (down) turns the bow there.
+      EXPECT_DOUBLE_EQ(out.wrench_override_body[5], side_m > 0.0 ? 0.6 : -0.6)
+          << "configured " << configured_nm << " N m, marker at y " << side_m << " m";
+    }
+  }
+}
+
 TEST_F(MissionTest, BriefLossDoesNotRestartTheServo) {
   Mission m = make();
   to_approach(m);
