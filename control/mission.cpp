@@ -150,12 +150,12 @@ void Mission::enter(MissionState to, std::chrono::nanoseconds now, const char* r
   }
 }
 
-void Mission::lost_at_standoff(std::chrono::nanoseconds now) {
+void Mission::lost_before_dock(std::chrono::nanoseconds now) {
   // APPROACH and ALIGN steer to the stand-off, short of the station, so the probe is not where a
   // back-off must pull it from; and backing off blind takes the vehicle beyond the range the
   // marker can be seen at in turbid water: in the sim's murky water (red extinction 1.6 /m) a
   // loss 0.75 m out backed off to 1.5 m, and the search never saw the marker again. So the abort
-  // counts, and the search turns from where the vehicle is.
+  // counts, and the search turns from where the vehicle is, toward the side the marker was lost on.
   enter(MissionState::abort, now, "marker lost");
   back_off_ = false;
 }
@@ -233,7 +233,7 @@ MissionOutput Mission::update(const MissionInput& in) {
       break;
     case MissionState::approach:
       if (lost) {
-        lost_at_standoff(in.now);
+        lost_before_dock(in.now);
       } else if (t_state > p_.approach_timeout_s) {
         enter(MissionState::abort, in.now, "approach timed out");
       } else if (seen && err.lateral_m <= p_.approach_lateral_m &&
@@ -264,7 +264,7 @@ MissionOutput Mission::update(const MissionInput& in) {
       }
       hold_frames_ = within ? hold_frames_ + 1 : 0;
       if (lost) {
-        lost_at_standoff(in.now);
+        lost_before_dock(in.now);
       } else if (hold_frames_ >= p_.align_hold_frames) {
         dock_start_back_m_ = p_.standoff_m;
         enter(MissionState::dock, in.now, "aligned");

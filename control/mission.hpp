@@ -153,7 +153,7 @@ class Mission {
   Errors errors(const Eigen::Isometry3d& T_cl_marker) const;
   void enter(MissionState to, std::chrono::nanoseconds now, const char* reason);
   // APPROACH or ALIGN lost the marker: an abort that searches at once, without backing off.
-  void lost_at_standoff(std::chrono::nanoseconds now);
+  void lost_before_dock(std::chrono::nanoseconds now);
   void charging(const MissionInput& in, bool seen_dock, const Errors& err);
   void start_undock(std::chrono::nanoseconds now, const char* reason);
   void push_event(const MissionEvent& e);
