@@ -350,7 +350,9 @@ MissionOutput Mission::update(const MissionInput& in) {
     case MissionState::search:
       out.use_override = true;
       // Turned toward where the marker was last seen: it left the view on that side (a current
-      // set the vehicle off, a turn overshot), and turning away costs a whole scan to find it.
+      // set the vehicle off, a turn overshot), and turning away costs a whole scan to find it;
+      // while a marker just found is confirmed, the scan turns toward it rather than past it (in
+      // murky water that kept a faint marker in view that the old scan lost at the image edge).
       // Never seen since the start: the configured direction.
       out.wrench_override_body[5] =
           have_last_ ? std::copysign(p_.search_yaw_moment_nm, last_bearing_starboard_ ? 1.0 : -1.0)

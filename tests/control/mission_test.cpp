@@ -248,13 +248,17 @@ TEST_F(MissionTest, MarkerLostMidApproachAbortsAndSearchesAtOnceWithoutBackingOf
 }
 
 // The scan turns toward the side the marker left the view on; before it was ever seen, the
-// configured way.
+// configured way; while it confirms a marker just found, toward that marker, so as not to scan
+// past it.
 TEST_F(MissionTest, SearchTurnsTowardWhereTheMarkerWasLastSeen) {
   for (const double configured_nm : {0.6, -0.6}) {
     params.search_yaw_moment_nm = configured_nm;
     for (const double side_m : {-0.3, 0.3}) {
       Mission m = make();
       EXPECT_DOUBLE_EQ(blind(m).wrench_override_body[5], configured_nm) << "never seen";
+      const MissionOutput confirming = tick(m, true, seen_at({2.0, side_m, 0.0}));
+      ASSERT_EQ(confirming.state, MissionState::search);
+      EXPECT_DOUBLE_EQ(confirming.wrench_override_body[5], side_m > 0.0 ? 0.6 : -0.6);
       to_approach(m);
       tick(m, true, seen_at({1.0, side_m, 0.0}));
       MissionOutput out;
