@@ -199,8 +199,8 @@ void describe(hal::ParamVisitor& v, MissionParams& p) {
           {"frames", 1, 1000, "consecutive unrecognised frames that abort APPROACH/ALIGN/DOCK"});
   v.param("search_yaw_moment_nm", p.search_yaw_moment_nm,
           {"N m", -20.0, 20.0,
-           "yaw moment of the SEARCH scan; its sign is the direction until the marker has been "
-           "seen, then the scan turns toward the side the marker was last seen on"});
+           "yaw moment of the SEARCH scan; its sign is the direction, except while a marker "
+           "found is confirmed (mission.acquire_frames): then the scan turns toward it"});
   v.param("search_timeout_s", p.search_timeout_s,
           {"s", 1.0, 86400.0, "SEARCH time after which the failsafe trips (search_time)"});
   v.param("standoff_m", p.standoff_m,

@@ -217,8 +217,8 @@ struct MissionParams {
   int acquire_frames = 3;  // consecutive recognised frames to leave SEARCH
   // 1.5 s at 30 Hz: a passing bar or a fish hides the marker that long; the vehicle holds.
   int lost_frames = 45;  // consecutive unrecognised frames that abort APPROACH/ALIGN/DOCK
-  // SEARCH: constant yaw moment (sets a slow scan against the yaw drag); its sign is the direction
-  // until the marker has been seen, then the scan turns toward the side it was last seen on.
+  // SEARCH: constant yaw moment (sets a slow scan against the yaw drag); its sign is the direction,
+  // except while a marker found is confirmed: then the scan turns toward it.
   double search_yaw_moment_nm = 0.6;
   double search_timeout_s = 120.0;  // then the failsafe (search_time)
   // APPROACH: servo to the stand-off pose, this far back from docked along the docking axis.

@@ -155,7 +155,7 @@ void Mission::lost_before_dock(std::chrono::nanoseconds now) {
   // back-off must pull it from; and backing off blind takes the vehicle beyond the range the
   // marker can be seen at in turbid water: in the sim's murky water (red extinction 1.6 /m) a
   // loss 0.75 m out backed off to 1.5 m, and the search never saw the marker again. So the abort
-  // counts, and the search turns from where the vehicle is, toward the side the marker was lost on.
+  // counts, and the search turns from where the vehicle is.
   enter(MissionState::abort, now, "marker lost");
   back_off_ = false;
 }
@@ -192,8 +192,6 @@ MissionOutput Mission::update(const MissionInput& in) {
     out.yaw_error_rad = err.yaw_rad;
     have_last_ = true;
     last_axial_m_ = err.axial_m;
-    const Eigen::Vector3d marker_body_m = T_body_cl_ * in.T_cl_marker.translation();
-    last_bearing_starboard_ = marker_body_m.y() >= 0.0;
   } else {
     seen_frames_ = 0;
     ++unseen_frames_;
@@ -349,14 +347,19 @@ MissionOutput Mission::update(const MissionInput& in) {
   switch (state_) {
     case MissionState::search:
       out.use_override = true;
-      // Turned toward where the marker was last seen: it left the view on that side (a current
-      // set the vehicle off, a turn overshot), and turning away costs a whole scan to find it;
-      // while a marker just found is confirmed, the scan turns toward it rather than past it (in
-      // murky water that kept a faint marker in view that the old scan lost at the image edge).
-      // Never seen since the start: the configured direction.
-      out.wrench_override_body[5] =
-          have_last_ ? std::copysign(p_.search_yaw_moment_nm, last_bearing_starboard_ ? 1.0 : -1.0)
-                     : p_.search_yaw_moment_nm;
+      // A marker found is confirmed over acquire_frames while the scan goes on: the scan turns
+      // toward it meanwhile rather than carrying it out of view (in murky water the scan's yaw
+      // rate took a faint marker found 27 deg to port out of view 1.8 s into APPROACH). Lost
+      // again, the scan turns the configured way: a marker lost off an edge was mostly taken
+      // there by the current turning the vehicle, which the scan cannot turn against (in the
+      // recharge sim, scanning toward the side it was lost on stalled for 28 s; with the current,
+      // the scan came round to it in 5.5 s).
+      out.wrench_override_body[5] = p_.search_yaw_moment_nm;
+      if (seen) {
+        const Eigen::Vector3d marker_body_m = T_body_cl_ * in.T_cl_marker.translation();
+        out.wrench_override_body[5] =
+            std::copysign(p_.search_yaw_moment_nm, marker_body_m.y() >= 0.0 ? 1.0 : -1.0);
+      }
       break;
     case MissionState::approach:
     case MissionState::align:

@@ -181,7 +181,6 @@ class Mission {
   int dock_off_frames_ = 0;  // consecutive seen frames past the dock abort limits
   bool have_last_ = false;
   double last_axial_m_ = 0.0;
-  bool last_bearing_starboard_ = true;  // the marker last seen right of the bow (body +y)
   Eigen::Vector3d docked_axis_body_ = Eigen::Vector3d::UnitX();  // docking axis when docked
   std::chrono::nanoseconds blind_since_{-1};
   // DOCK's push runs on the full view only: the time it has run, and since when the view is

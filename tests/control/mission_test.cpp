@@ -247,25 +247,26 @@ TEST_F(MissionTest, MarkerLostMidApproachAbortsAndSearchesAtOnceWithoutBackingOf
   EXPECT_TRUE(out.servo_restart);
 }
 
-// The scan turns toward the side the marker left the view on; before it was ever seen, the
-// configured way; while it confirms a marker just found, toward that marker, so as not to scan
-// past it.
-TEST_F(MissionTest, SearchTurnsTowardWhereTheMarkerWasLastSeen) {
+// While a marker found is confirmed the scan turns toward it, not past it; before it is found and
+// after it is lost again, the configured way (the current that took it off the edge would stall a
+// scan turning back against it).
+TEST_F(MissionTest, SearchTurnsTowardAMarkerBeingConfirmedElseTheConfiguredWay) {
   for (const double configured_nm : {0.6, -0.6}) {
     params.search_yaw_moment_nm = configured_nm;
     for (const double side_m : {-0.3, 0.3}) {
+      const double toward_nm = side_m > 0.0 ? 0.6 : -0.6;  // body +y starboard, z down
       Mission m = make();
       EXPECT_DOUBLE_EQ(blind(m).wrench_override_body[5], configured_nm) << "never seen";
       const MissionOutput confirming = tick(m, true, seen_at({2.0, side_m, 0.0}));
       ASSERT_EQ(confirming.state, MissionState::search);
-      EXPECT_DOUBLE_EQ(confirming.wrench_override_body[5], side_m > 0.0 ? 0.6 : -0.6);
+      EXPECT_DOUBLE_EQ(confirming.wrench_override_body[5], toward_nm)
+          << "configured " << configured_nm << " N m, marker at y " << side_m << " m";
+      EXPECT_DOUBLE_EQ(blind(m).wrench_override_body[5], configured_nm) << "a glimpse, gone";
       to_approach(m);
       tick(m, true, seen_at({1.0, side_m, 0.0}));
       MissionOutput out;
       while (m.state() != MissionState::search) out = blind(m);
-      // Body +y is starboard, and a positive moment about body z (down) turns the bow there.
-      EXPECT_DOUBLE_EQ(out.wrench_override_body[5], side_m > 0.0 ? 0.6 : -0.6)
-          << "configured " << configured_nm << " N m, marker at y " << side_m << " m";
+      EXPECT_DOUBLE_EQ(out.wrench_override_body[5], configured_nm) << "lost in APPROACH";
     }
   }
 }
