@@ -211,6 +211,11 @@ void describe(hal::ParamVisitor& v, MissionParams& p) {
           {"m", 0.001, 2.0, "axial error that ends APPROACH"});
   v.param("approach_yaw_rad", p.approach_yaw_rad,
           {"rad", 0.001, 3.2, "yaw error that ends APPROACH"});
+  v.param("approach_view_bearing_rad", p.approach_view_bearing_rad,
+          {"rad", 0.0, 1.5,
+           "APPROACH: the servo turns toward the docking axis's heading only as far as keeps the "
+           "marker within this bearing of the camera's axis; seen far off the axis, turning to "
+           "the axis's heading first swings the marker out of view. 0: no limit"});
   v.param("approach_timeout_s", p.approach_timeout_s,
           {"s", 1.0, 3600.0, "APPROACH time limit (then ABORT)"});
   v.param("align_lateral_m", p.align_lateral_m,

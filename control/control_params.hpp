@@ -226,6 +226,9 @@ struct MissionParams {
   double approach_lateral_m = 0.05;  // enter ALIGN when within these
   double approach_axial_m = 0.08;
   double approach_yaw_rad = 0.10;
+  // APPROACH: the servo turns toward the docking axis's heading only as far as keeps the marker
+  // within this bearing of the camera's axis (half the field of view is ~30 deg here). 0: off.
+  double approach_view_bearing_rad = 0.26;
   double approach_timeout_s = 90.0;
   // ALIGN: hold the stand-off until the error stays within these for hold_frames frames.
   double align_lateral_m = 0.008;

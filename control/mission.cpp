@@ -350,10 +350,9 @@ MissionOutput Mission::update(const MissionInput& in) {
       // A marker found is confirmed over acquire_frames while the scan goes on: the scan turns
       // toward it meanwhile rather than carrying it out of view (in murky water the scan's yaw
       // rate took a faint marker found 27 deg to port out of view 1.8 s into APPROACH). Lost
-      // again, the scan turns the configured way: a marker lost off an edge was mostly taken
-      // there by the current turning the vehicle, which the scan cannot turn against (in the
-      // recharge sim, scanning toward the side it was lost on stalled for 28 s; with the current,
-      // the scan came round to it in 5.5 s).
+      // again, the scan turns the configured way: a scan turning back toward the side it was lost
+      // on may have to turn against the current, which its moment cannot (in the recharge sim it
+      // stalled for 28 s; with the current, the scan came round to the marker in 5.5 s).
       out.wrench_override_body[5] = p_.search_yaw_moment_nm;
       if (seen) {
         const Eigen::Vector3d marker_body_m = T_body_cl_ * in.T_cl_marker.translation();
@@ -364,6 +363,9 @@ MissionOutput Mission::update(const MissionInput& in) {
     case MissionState::approach:
     case MissionState::align:
       out.T_cl_marker_desired = T_standoff_;
+      // Turning to the axis's heading from far off the axis swings the marker out of view
+      // (recharge trial 33: four aborts, FAILED); ALIGN, at the stand-off, turns the rest.
+      if (state_ == MissionState::approach) out.max_bearing_rad = p_.approach_view_bearing_rad;
       out.servo_active = seen;
       out.use_override = !seen;  // brief loss: hold (feed-forward only)
       break;

@@ -69,6 +69,9 @@ struct MissionOutput {
   // Added to the wrench whenever the thrusters are enabled (the seated hold's push).
   Wrench push_body = Wrench::Zero();
   bool thrusters_enabled = true;
+  // > 0: the servo turns only as far as keeps the marker within this bearing of the camera's
+  // axis (PdVisualServo::keep_in_view); 0: no limit.
+  double max_bearing_rad = 0.0;
   // The servo's integral along body x, the docking axis once aligned: the axial trim against the
   // current. keep_axial_trim: remember it now (ALIGN -> DOCK: it has just held the vehicle still
   // at the stand-off, so it is the current's drag along the axis). restore_axial_trim: set it

@@ -57,6 +57,13 @@ PoseError pose_error_body(const Eigen::Isometry3d& T_body_cl,
   return e;
 }
 
+double marker_bearing_rad(const Eigen::Isometry3d& T_body_cl,
+                          const Eigen::Isometry3d& T_cl_marker) {
+  const Eigen::Vector3d to_marker = T_body_cl.linear() * T_cl_marker.translation();
+  const Eigen::Vector3d axis = T_body_cl.linear().col(2);
+  return wrap_pi(std::atan2(to_marker.y(), to_marker.x()) - std::atan2(axis.y(), axis.x()));
+}
+
 PdVisualServo::PdVisualServo(const ServoParams& params, const Eigen::Isometry3d& T_body_cl)
     : p_(params), T_body_cl_(T_body_cl), rate_(params.rate_cutoff_hz, rate_limits(params)) {
   kp_ << p_.kp_linear, p_.kp_angular;
@@ -93,8 +100,13 @@ Wrench PdVisualServo::update(const Eigen::Isometry3d& T_cl_marker_measured,
     return Wrench::Constant(std::numeric_limits<double>::quiet_NaN());
   }
   const double dt_s = std::chrono::duration<double>(dt).count();
-  const PoseError e =
-      pose_error_body(T_body_cl_, T_cl_marker_measured, T_cl_marker_desired, p_.six_dof);
+  PoseError e = pose_error_body(T_body_cl_, T_cl_marker_measured, T_cl_marker_desired, p_.six_dof);
+  if (max_bearing_rad_ > 0.0) {
+    // Turned by e[5], the marker's bearing would be b - e[5]. Limited before the derivative,
+    // which then follows the bearing while the limit holds.
+    const double b = marker_bearing_rad(T_body_cl_, T_cl_marker_measured);
+    e[5] = std::clamp(e[5], b - max_bearing_rad_, b + max_bearing_rad_);
+  }
   error_ = e;
 
   if (dt_s > p_.max_update_gap_s) rate_.reset();  // stale previous sample: no derivative kick

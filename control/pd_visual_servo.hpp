@@ -23,6 +23,10 @@ PoseError pose_error_body(const Eigen::Isometry3d& T_body_cl,
                           const Eigen::Isometry3d& T_cl_marker_measured,
                           const Eigen::Isometry3d& T_cl_marker_desired, bool six_dof);
 
+// The yaw (positive: to starboard) that centres the marker on the camera's axis, both projected
+// on the body x-y plane.
+double marker_bearing_rad(const Eigen::Isometry3d& T_body_cl, const Eigen::Isometry3d& T_cl_marker);
+
 class PdVisualServo {
  public:
   // Throws std::invalid_argument for a bad rate cut-off.
@@ -33,6 +37,13 @@ class PdVisualServo {
   // returns a NaN wrench, for the failsafe to act on. No allocation.
   Wrench update(const Eigen::Isometry3d& T_cl_marker_measured,
                 const Eigen::Isometry3d& T_cl_marker_desired, std::chrono::nanoseconds dt);
+
+  // From the next update on, the yaw error is limited to the turns that leave the marker within
+  // max_bearing_rad of the camera's axis (its bearing in the body x-y plane); 0 lifts the limit.
+  // Pose-based servoing turns to the docking axis's heading wherever the vehicle is: seen far
+  // off the axis, that swings the marker out of view before the sway has brought the vehicle
+  // round.
+  void keep_in_view(double max_bearing_rad) { max_bearing_rad_ = max_bearing_rad; }
 
   // Anti-windup from the allocation: while the last wrench was scaled down (fraction < 1) the
   // integral may only shrink.
@@ -66,6 +77,7 @@ class PdVisualServo {
   PoseError integral_ = PoseError::Zero();  // of the clipped error, m s and rad s
   PoseError error_ = PoseError::Zero();
   bool saturated_ = false;
+  double max_bearing_rad_ = 0.0;
   Eigen::Matrix<bool, 6, 1> held_ = Eigen::Matrix<bool, 6, 1>::Constant(false);
 };
 

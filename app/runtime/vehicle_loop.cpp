@@ -268,6 +268,7 @@ bool VehicleLoop::tick(const TickInfo& info) {
       if (out.servo_active) {
         const std::chrono::nanoseconds dt =
             last_servo_time_.count() < 0 ? info.period : now - last_servo_time_;
+        servo_.keep_in_view(out.max_bearing_rad);
         wrench = servo_.update(in.T_cl_marker, out.T_cl_marker_desired, dt);
         last_servo_time_ = now;
       } else {

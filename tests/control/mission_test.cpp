@@ -82,6 +82,7 @@ TEST_F(MissionTest, NominalSequenceToDocked) {
   EXPECT_FALSE(out.servo_active);
   EXPECT_DOUBLE_EQ(out.wrench_override_body[5], params.search_yaw_moment_nm);
   EXPECT_TRUE(out.thrusters_enabled);
+  EXPECT_EQ(out.max_bearing_rad, 0.0);
 
   // Seen for acquire_frames frames: APPROACH, servo (re)started on the stand-off pose.
   for (int k = 0; k < params.acquire_frames; ++k) out = tick(m, true, seen_at({2.0, 0.2, 0.1}));
@@ -90,6 +91,9 @@ TEST_F(MissionTest, NominalSequenceToDocked) {
   EXPECT_TRUE(out.servo_restart);
   EXPECT_FALSE(out.use_override);
   EXPECT_TRUE(out.T_cl_marker_desired.isApprox(m.standoff_T_cl_marker()));
+  // The servo turns to the axis's heading only as far as keeps the marker in view.
+  EXPECT_GT(params.approach_view_bearing_rad, 0.0);
+  EXPECT_EQ(out.max_bearing_rad, params.approach_view_bearing_rad);
   EXPECT_TRUE(out.errors_valid);
   EXPECT_NEAR(out.axial_error_m, -2.0, 1e-9);
   EXPECT_NEAR(out.lateral_error_m, std::hypot(0.2, 0.1), 1e-9);
@@ -99,7 +103,8 @@ TEST_F(MissionTest, NominalSequenceToDocked) {
   // At the stand-off: ALIGN, then DOCK after align_hold_frames frames within the thresholds.
   out = tick(m, true, seen_at({params.standoff_m + 0.01, 0.003, 0.0}));
   EXPECT_EQ(out.state, MissionState::align);
-  EXPECT_FALSE(out.servo_restart);  // the servo keeps its integral through the hand-over
+  EXPECT_FALSE(out.servo_restart);      // the servo keeps its integral through the hand-over
+  EXPECT_EQ(out.max_bearing_rad, 0.0);  // at the stand-off, the axis's heading in full
   for (int k = 1; k < params.align_hold_frames; ++k) {
     out = tick(m, true, seen_at({params.standoff_m, 0.002, 0.0}, 0.01));
   }
@@ -113,6 +118,7 @@ TEST_F(MissionTest, NominalSequenceToDocked) {
   const double moved = (p0 - out.T_cl_marker_desired.translation()).norm();
   EXPECT_NEAR(moved, params.dock_speed_mps * 30 * 0.033, 1e-6);
   EXPECT_TRUE(out.servo_active);
+  EXPECT_EQ(out.max_bearing_rad, 0.0);
 
   // Contact: DOCKED, thrusters neutral.
   for (int k = 0; k < params.contact_frames; ++k) out = tick(m, true, seen_at({0.0, 0, 0}), true);

@@ -1,5 +1,6 @@
 // PdVisualServo: sign conventions per axis, the 4-DOF default, filtered derivative, integral with
-// anti-windup, error clipping, feed-forward, non-finite input.
+// anti-windup, error clipping, the turn limited to keep the marker in view, feed-forward,
+// non-finite input.
 #include "control/pd_visual_servo.hpp"
 
 #include <gtest/gtest.h>
@@ -226,6 +227,53 @@ TEST_F(PdVisualServoTest, BuoyancyFeedForwardPushesDown) {
   const Wrench w = servo.update(desired, desired, 33ms);
   EXPECT_NEAR(w[2], 3.0, 1e-12);
   EXPECT_NEAR(servo.feedforward_body()[2], 3.0, 1e-12);
+}
+
+TEST_F(PdVisualServoTest, MarkerBearingIsTheTurnThatCentresIt) {
+  // A forward camera: its x to starboard, y down, z forward.
+  Eigen::Matrix3d R_body_cl;
+  R_body_cl << 0, 0, 1, 1, 0, 0, 0, 1, 0;
+  Eigen::Isometry3d T_body_cam = Eigen::Isometry3d::Identity();
+  T_body_cam.linear() = R_body_cl;
+  T_body_cam.translation() = Eigen::Vector3d(0.2, -0.1, 0.05);
+  Eigen::Isometry3d T_cl_marker = Eigen::Isometry3d::Identity();
+  T_cl_marker.translation() = Eigen::Vector3d(0.0, 0.1, 0.7);
+  EXPECT_NEAR(marker_bearing_rad(T_body_cam, T_cl_marker), 0.0, 1e-12);
+  T_cl_marker.translation() = Eigen::Vector3d(0.4, -0.2, 0.4);  // 45 deg to starboard
+  EXPECT_NEAR(marker_bearing_rad(T_body_cam, T_cl_marker), M_PI / 4, 1e-12);
+  T_cl_marker.translation() = Eigen::Vector3d(-0.3, 0.0, 0.3 * std::sqrt(3.0));  // 30 to port
+  EXPECT_NEAR(marker_bearing_rad(T_body_cam, T_cl_marker), -M_PI / 6, 1e-12);
+}
+
+TEST_F(PdVisualServoTest, KeepInViewLimitsTheTurnToWhatKeepsTheMarkerInSight) {
+  // The station 1 m ahead and 0.1 m to one side, its docking axis 1 rad round the same way:
+  // turning the whole radian would put the marker past the camera's edge.
+  const double limit = 0.26;
+  for (const double side : {1.0, -1.0}) {
+    const Eigen::Isometry3d m =
+        measured(moved({1.0, side * 0.1, 0.0}) * turned(side * 1.0, Eigen::Vector3d::UnitZ()));
+    const double b = marker_bearing_rad(T_body_cl, m);
+    ASSERT_GT(side * b, 0.2) << "side " << side;
+    ASSERT_LT(side * (b + side * limit), 1.0) << "side " << side;
+    PdVisualServo free_turn(params(), T_body_cl);
+    free_turn.update(m, desired, 33ms);
+    EXPECT_NEAR(free_turn.error()[5], side * 1.0, 1e-9);
+    PdVisualServo servo(params(), T_body_cl);
+    servo.keep_in_view(limit);
+    servo.update(m, desired, 33ms);
+    // Turned by the error, the marker stays `limit` inside; the translation is not touched.
+    EXPECT_NEAR(servo.error()[5], b + side * limit, 1e-9) << "side " << side;
+    EXPECT_NEAR(std::abs(b - servo.error()[5]), limit, 1e-9);
+    EXPECT_TRUE(servo.error().head<3>().isApprox(free_turn.error().head<3>()));
+    // A turn that keeps the marker in sight is left as it is, and 0 lifts the limit.
+    const Eigen::Isometry3d small =
+        measured(moved({0.8, side * 0.05, 0.0}) * turned(side * 0.1, Eigen::Vector3d::UnitZ()));
+    servo.update(small, desired, 33ms);
+    EXPECT_NEAR(servo.error()[5], side * 0.1, 1e-9);
+    servo.keep_in_view(0.0);
+    servo.update(m, desired, 33ms);
+    EXPECT_NEAR(servo.error()[5], side * 1.0, 1e-9);
+  }
 }
 
 TEST_F(PdVisualServoTest, NonFiniteInputGivesNaNAndKeepsState) {
