@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <ctime>
 #include <iostream>
 #include <random>
@@ -203,9 +204,31 @@ void print_figures(const ModeFigures& m, const std::string& mode, int cap) {
               m.r_err_deg_median);
 }
 
+// `--range-bands-m 0.5,1.0,1.3`: the edges between range bands, m, ascending.
+std::vector<double> range_edges(const std::string& text) {
+  std::vector<double> edges;
+  std::size_t start = 0;
+  while (start <= text.size()) {
+    const std::size_t comma = std::min(text.find(',', start), text.size());
+    const std::string item = text.substr(start, comma - start);
+    char* end = nullptr;
+    const double v = std::strtod(item.c_str(), &end);
+    if (item.empty() || *end != '\0' || !(v > 0.0 && v <= 100.0) ||
+        (!edges.empty() && !(v > edges.back()))) {
+      throw UsageError(
+          "rovctl bench: --range-bands-m must be ascending ranges in (0, 100] m separated by "
+          "commas, got '" +
+          text + "' (at '" + item + "')");
+    }
+    edges.push_back(v);
+    start = comma + 1;
+  }
+  return edges;
+}
+
 // `rovctl bench --set DIR`: the estimator scored on an independent validation set, per condition.
 int bench_set(const AppConfig& config, const hal::StereoRig& rig, const std::string& dir,
-              int frames, bool json_out, bool verbose) {
+              int frames, const std::vector<double>& range_edges_m, bool json_out, bool verbose) {
   std::vector<ValidationPair> pairs;
   try {
     pairs = load_validation_set(dir);
@@ -215,6 +238,7 @@ int bench_set(const AppConfig& config, const hal::StereoRig& rig, const std::str
   std::vector<PairResult> details;
   const std::vector<ConditionScore> scores =
       score_validation_set(rig, config.marker, config.estimator, pairs, frames, &details);
+  const std::vector<ConditionScore> by_range = score_by_range(details, range_edges_m);
   if (verbose) {
     for (const PairResult& r : details) {
       std::fprintf(
@@ -260,6 +284,21 @@ int bench_set(const AppConfig& config, const hal::StereoRig& rig, const std::str
           .field("ms_per_frame_p95", s.ms_per_frame_p95)
           .end_object();
     }
+    json.end_array().begin_array("by_range");
+    for (const ConditionScore& s : by_range) {
+      json.begin_object()
+          .field("condition", s.condition)
+          .field("range_from_m", s.range_from_m)
+          .field("range_to_m", s.range_to_m)  // null: no upper edge
+          .field("pairs", s.pairs)
+          .field("success", s.success)
+          .field("success_rate", static_cast<double>(s.success) / s.pairs)
+          .field("false_ok", s.false_ok)
+          .field("partial", s.partial)
+          .field("translation_mm_median", s.translation_mm_median)
+          .field("rotation_deg_median", s.rotation_deg_median)
+          .end_object();
+    }
     json.end_array().end_object();
     std::cout << json.str() << "\n";
   } else {
@@ -277,6 +316,14 @@ int bench_set(const AppConfig& config, const hal::StereoRig& rig, const std::str
                   s.translation_mm_p95, s.rotation_deg_median, s.rotation_deg_p95,
                   s.ms_per_frame_p95);
     }
+    std::printf("\nby the marker's true range from the left camera:\n%-14s %11s %5s %8s %9s\n",
+                "condition", "range m", "pairs", "success", "false-ok");
+    for (const ConditionScore& s : by_range) {
+      char to[16] = "";
+      if (std::isfinite(s.range_to_m)) std::snprintf(to, sizeof to, "%.2f", s.range_to_m);
+      std::printf("%-14s %4.2f-%-5s %6d %7.0f%% %8.0f%%\n", s.condition.c_str(), s.range_from_m, to,
+                  s.pairs, 100.0 * s.success / s.pairs, 100.0 * s.false_ok / s.pairs);
+    }
   }
   return kExitOk;
 }
@@ -285,7 +332,8 @@ int bench_set(const AppConfig& config, const hal::StereoRig& rig, const std::str
 
 int command_bench(const Words& words) {
   const CliArgs args =
-      CliArgs::parse("bench", words, {"--config", "--pairs", "--frame-cap", "--set", "--frames"},
+      CliArgs::parse("bench", words,
+                     {"--config", "--pairs", "--frame-cap", "--set", "--frames", "--range-bands-m"},
                      {"--json", "--verbose"});
   const std::string config_file =
       args.has("--config") ? args.get("--config") : default_config_path();
@@ -293,7 +341,8 @@ int command_bench(const Words& words) {
   const hal::StereoRig rig = load_rig(config);
   if (args.has("--set")) {
     return bench_set(config, rig, args.get("--set"),
-                     static_cast<int>(args.get_int("--frames", 10, 1, 10000)), args.has("--json"),
+                     static_cast<int>(args.get_int("--frames", 10, 1, 10000)),
+                     range_edges(args.get("--range-bands-m", "0.5,1.0,1.3")), args.has("--json"),
                      args.has("--verbose"));
   }
   const int n_pairs = static_cast<int>(args.get_int("--pairs", 100, 3, 100000));

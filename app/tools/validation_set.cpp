@@ -4,6 +4,7 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <opencv2/imgcodecs.hpp>
@@ -139,6 +140,7 @@ std::vector<ConditionScore> score_validation_set(const hal::StereoRig& rig,
     }
     PairResult r;
     r.pair = &pair;
+    r.range_m = pair.T_cl_marker.translation().norm();
     r.ok = e.ok;
     r.partial = !e.ok && e.recognised;
     r.fitness = e.fitness;
@@ -164,6 +166,39 @@ std::vector<ConditionScore> score_validation_set(const hal::StereoRig& rig,
     scores.push_back(summarise(c, by_condition[c], ms_by_condition[c]));
   scores.push_back(summarise("all", all, all_ms));
   return scores;
+}
+
+std::vector<ConditionScore> score_by_range(const std::vector<PairResult>& details,
+                                           const std::vector<double>& edges_m) {
+  for (std::size_t i = 0; i < edges_m.size(); ++i) {
+    if (!(edges_m[i] > 0.0) || (i > 0 && !(edges_m[i] > edges_m[i - 1]))) {
+      throw std::invalid_argument("range edges must be positive and ascending");
+    }
+  }
+  std::vector<std::string> order;
+  for (const PairResult& r : details) {
+    if (std::find(order.begin(), order.end(), r.pair->condition) == order.end()) {
+      order.push_back(r.pair->condition);
+    }
+  }
+  std::vector<ConditionScore> rows;
+  for (const std::string& c : order) {
+    for (std::size_t band = 0; band <= edges_m.size(); ++band) {
+      const double from = band == 0 ? 0.0 : edges_m[band - 1];
+      const double to =
+          band == edges_m.size() ? std::numeric_limits<double>::infinity() : edges_m[band];
+      std::vector<PairResult> in_band;
+      for (const PairResult& r : details) {
+        if (r.pair->condition == c && r.range_m >= from && r.range_m < to) in_band.push_back(r);
+      }
+      if (in_band.empty()) continue;
+      ConditionScore s = summarise(c, in_band, {});
+      s.range_from_m = from;
+      s.range_to_m = to;
+      rows.push_back(s);
+    }
+  }
+  return rows;
 }
 
 }  // namespace rovctl::app

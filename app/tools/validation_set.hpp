@@ -5,6 +5,7 @@
 
 #include <Eigen/Geometry>
 #include <array>
+#include <limits>
 #include <map>
 #include <string>
 #include <vector>
@@ -32,6 +33,9 @@ constexpr double kRightRotationDeg = 5.0;
 
 struct ConditionScore {
   std::string condition;
+  // The marker's true range from the left camera that the row covers: [from, to), m.
+  double range_from_m = 0.0;
+  double range_to_m = std::numeric_limits<double>::infinity();
   int pairs = 0;
   int ok = 0;        // the estimator said ok
   int success = 0;   // said ok and was right
@@ -42,11 +46,12 @@ struct ConditionScore {
   double rotation_deg_median = 0.0, rotation_deg_p95 = 0.0;
   // Over every pair, ok or not: how far off the best pose was.
   double translation_mm_median_all = 0.0;
-  double ms_per_frame_p95 = 0.0;
+  double ms_per_frame_p95 = 0.0;  // NaN in a range row: the time is the condition's
 };
 
 struct PairResult {
   const ValidationPair* pair = nullptr;
+  double range_m = 0.0;  // the truth's, from the left camera
   bool ok = false;
   bool partial = false;
   double translation_mm = 0.0, rotation_deg = 0.0;
@@ -67,5 +72,10 @@ std::vector<ConditionScore> score_validation_set(const hal::StereoRig& rig,
                                                  const estimator::EstimatorParams& params,
                                                  const std::vector<ValidationPair>& pairs,
                                                  int frames, std::vector<PairResult>* details);
+
+// The same scores split by the marker's true range at `edges_m` (ascending, > 0): where in each
+// condition the estimator gives up. One row per condition and non-empty band, in the set's order.
+std::vector<ConditionScore> score_by_range(const std::vector<PairResult>& details,
+                                           const std::vector<double>& edges_m);
 
 }  // namespace rovctl::app

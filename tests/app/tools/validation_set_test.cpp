@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <set>
@@ -56,6 +57,48 @@ TEST(ValidationSet, WhatTheEstimatorCallsOkIsRight) {
       EXPECT_GE(s.success, s.pairs / 2) << "fewer than half of the sample located";
     }
   }
+}
+
+PairResult result_at(const ValidationPair& pair, double range_m, bool ok, double error_mm) {
+  PairResult r;
+  r.pair = &pair;
+  r.range_m = range_m;
+  r.ok = ok;
+  r.partial = !ok;
+  r.translation_mm = error_mm;
+  return r;
+}
+
+TEST(ValidationSet, ScoresByRangeSplitEachConditionAtTheEdges) {
+  ValidationPair noise, clear;
+  noise.condition = "noise_jpeg";
+  clear.condition = "clear";
+  const std::vector<PairResult> details = {
+      result_at(noise, 0.40, true, 1.0),  result_at(clear, 0.45, true, 0.5),
+      result_at(noise, 0.90, true, 12.0), result_at(noise, 1.00, false, 3.0),
+      result_at(noise, 1.44, false, 6.0), result_at(noise, 1.46, true, 2.0),
+  };
+  const std::vector<ConditionScore> rows = score_by_range(details, {0.5, 1.0});
+  // noise: [0, 0.5) 1 pair; [0.5, 1.0) 1 (a false ok); [1.0, inf) 3 (1.00 is in the upper band).
+  // clear: [0, 0.5) only; empty bands give no row.
+  ASSERT_EQ(rows.size(), 4u);
+  EXPECT_EQ(rows[0].condition, "noise_jpeg");
+  EXPECT_EQ(rows[0].range_from_m, 0.0);
+  EXPECT_EQ(rows[0].range_to_m, 0.5);
+  EXPECT_EQ(rows[0].pairs, 1);
+  EXPECT_EQ(rows[0].success, 1);
+  EXPECT_EQ(rows[1].pairs, 1);
+  EXPECT_EQ(rows[1].false_ok, 1);
+  EXPECT_EQ(rows[1].success, 0);
+  EXPECT_EQ(rows[2].range_from_m, 1.0);
+  EXPECT_TRUE(std::isinf(rows[2].range_to_m));
+  EXPECT_EQ(rows[2].pairs, 3);
+  EXPECT_EQ(rows[2].success, 1);
+  EXPECT_EQ(rows[2].partial, 2);
+  EXPECT_EQ(rows[3].condition, "clear");
+  EXPECT_EQ(rows[3].pairs, 1);
+  EXPECT_THROW(score_by_range(details, {1.0, 0.5}), std::invalid_argument);
+  EXPECT_THROW(score_by_range(details, {0.0}), std::invalid_argument);
 }
 
 TEST(ValidationSet, ABrokenManifestIsNamed) {
