@@ -228,7 +228,8 @@ std::vector<double> range_edges(const std::string& text) {
 
 // `rovctl bench --set DIR`: the estimator scored on an independent validation set, per condition.
 int bench_set(const AppConfig& config, const hal::StereoRig& rig, const std::string& dir,
-              int frames, const std::vector<double>& range_edges_m, bool json_out, bool verbose) {
+              int frames, std::uint64_t seed, const std::vector<double>& range_edges_m,
+              bool json_out, bool verbose) {
   std::vector<ValidationPair> pairs;
   try {
     pairs = load_validation_set(dir);
@@ -237,7 +238,7 @@ int bench_set(const AppConfig& config, const hal::StereoRig& rig, const std::str
   }
   std::vector<PairResult> details;
   const std::vector<ConditionScore> scores =
-      score_validation_set(rig, config.marker, config.estimator, pairs, frames, &details);
+      score_validation_set(rig, config.marker, config.estimator, pairs, frames, &details, seed);
   const std::vector<ConditionScore> by_range = score_by_range(details, range_edges_m);
   if (verbose) {
     for (const PairResult& r : details) {
@@ -263,6 +264,7 @@ int bench_set(const AppConfig& config, const hal::StereoRig& rig, const std::str
         .field("set", dir)
         .field("mode", config.estimator.mode)
         .field("frames", frames)
+        .field("seed", static_cast<long>(seed))
         .field("right_translation_mm", kRightTranslationMm)
         .field("right_rotation_deg", kRightRotationDeg)
         .begin_array("conditions");
@@ -303,10 +305,10 @@ int bench_set(const AppConfig& config, const hal::StereoRig& rig, const std::str
     std::cout << json.str() << "\n";
   } else {
     std::printf(
-        "rovctl bench --set %s: %zu pairs, %d frames each, %s mode; right = within %.0f mm "
-        "and %.0f deg\n",
-        dir.c_str(), pairs.size(), frames, config.estimator.mode.c_str(), kRightTranslationMm,
-        kRightRotationDeg);
+        "rovctl bench --set %s: %zu pairs, %d frames each, GA seed %lu, %s mode; right = within "
+        "%.0f mm and %.0f deg\n",
+        dir.c_str(), pairs.size(), frames, static_cast<unsigned long>(seed),
+        config.estimator.mode.c_str(), kRightTranslationMm, kRightRotationDeg);
     std::printf("%-14s %5s %8s %9s %8s %10s %10s %9s\n", "condition", "pairs", "success",
                 "false-ok", "partial", "mm med/p95", "deg med/p95", "ms p95");
     for (const ConditionScore& s : scores) {
@@ -331,10 +333,10 @@ int bench_set(const AppConfig& config, const hal::StereoRig& rig, const std::str
 }  // namespace
 
 int command_bench(const Words& words) {
-  const CliArgs args =
-      CliArgs::parse("bench", words,
-                     {"--config", "--pairs", "--frame-cap", "--set", "--frames", "--range-bands-m"},
-                     {"--json", "--verbose"});
+  const CliArgs args = CliArgs::parse(
+      "bench", words,
+      {"--config", "--pairs", "--frame-cap", "--set", "--frames", "--seed", "--range-bands-m"},
+      {"--json", "--verbose"});
   const std::string config_file =
       args.has("--config") ? args.get("--config") : default_config_path();
   const AppConfig config = load_app_config(config_file);
@@ -342,6 +344,7 @@ int command_bench(const Words& words) {
   if (args.has("--set")) {
     return bench_set(config, rig, args.get("--set"),
                      static_cast<int>(args.get_int("--frames", 10, 1, 10000)),
+                     static_cast<std::uint64_t>(args.get_int("--seed", 0, 0, 1000000)),
                      range_edges(args.get("--range-bands-m", "0.5,1.0,1.3")), args.has("--json"),
                      args.has("--verbose"));
   }

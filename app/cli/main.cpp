@@ -35,7 +35,7 @@ commands:
   estimate   --config FILE --left L.png --right R.png [--frames N] [--seed S] [--json]
              marker pose in the left camera frame from one stereo pair
   bench      [--config FILE] [--json]     estimator throughput and convergence
-  bench      --set DIR [--frames N] [--range-bands-m 0.5,1.0,1.3] [--json] [--verbose]
+  bench      --set DIR [--frames N] [--seed S] [--range-bands-m 0.5,1.0,1.3] [--json] [--verbose]
              the estimator on a validation set (DIR/manifest.json), per condition
              and per band of the marker's true range
   study      [--config FILE] [--quick] [--seeds N] [--out DIR] [--json]

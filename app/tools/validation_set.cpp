@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <filesystem>
 #include <opencv2/imgcodecs.hpp>
 #include <stdexcept>
@@ -73,6 +74,19 @@ ConditionScore summarise(const std::string& condition, const std::vector<PairRes
   return s;
 }
 
+// FNV-1a of the name, then the seed's bytes: fixed across platforms and standard libraries,
+// unlike std::hash.
+std::uint64_t seed_of(const std::string& name, std::uint64_t seed) {
+  std::uint64_t h = 14695981039346656037ull;
+  const auto mix = [&h](unsigned char c) {
+    h ^= c;
+    h *= 1099511628211ull;
+  };
+  for (const unsigned char c : name) mix(c);
+  for (int byte = 0; byte < 8; ++byte) mix(static_cast<unsigned char>(seed >> (8 * byte)));
+  return h;
+}
+
 }  // namespace
 
 std::vector<ValidationPair> load_validation_set(const std::string& dir) {
@@ -94,7 +108,8 @@ std::vector<ValidationPair> load_validation_set(const std::string& dir) {
     try {
       ValidationPair v;
       v.condition = p["condition"].as<std::string>();
-      v.left_png = (fs::path(dir) / p["left"].as<std::string>()).string();
+      v.name = p["left"].as<std::string>();
+      v.left_png = (fs::path(dir) / v.name).string();
       v.right_png = (fs::path(dir) / p["right"].as<std::string>()).string();
       const auto t = p["t_cl_marker_m"].as<std::vector<double>>();
       const auto q = p["q_cl_marker_wxyz"].as<std::vector<double>>();
@@ -117,7 +132,8 @@ std::vector<ConditionScore> score_validation_set(const hal::StereoRig& rig,
                                                  const hal::MarkerModel& marker,
                                                  const estimator::EstimatorParams& params,
                                                  const std::vector<ValidationPair>& pairs,
-                                                 int frames, std::vector<PairResult>* details) {
+                                                 int frames, std::vector<PairResult>* details,
+                                                 std::uint64_t seed) {
   std::vector<std::string> order;
   std::map<std::string, std::vector<PairResult>> by_condition;
   std::map<std::string, std::vector<double>> ms_by_condition;
@@ -127,7 +143,7 @@ std::vector<ConditionScore> score_validation_set(const hal::StereoRig& rig,
     const ValidationPair& pair = pairs[i];
     const cv::Mat left = read_png(pair.left_png, rig.left);
     const cv::Mat right = read_png(pair.right_png, rig.right);
-    estimator::PoseEstimator estimator(rig, marker, params, 1 + i);
+    estimator::PoseEstimator estimator(rig, marker, params, seed_of(pair.name, seed));
     estimator::PoseEstimate e;
     for (int f = 0; f < frames; ++f) {
       e = estimator.update(left, right);

@@ -5,6 +5,7 @@
 
 #include <Eigen/Geometry>
 #include <array>
+#include <cstdint>
 #include <limits>
 #include <map>
 #include <string>
@@ -18,6 +19,7 @@ namespace rovctl::app {
 
 struct ValidationPair {
   std::string condition;
+  std::string name;                 // the manifest's "left" entry: the pair's identity in any set
   std::string left_png, right_png;  // full paths
   Eigen::Isometry3d T_cl_marker = Eigen::Isometry3d::Identity();
   // Visible fraction of each sphere per view, as the generator estimated it (1 = whole).
@@ -66,12 +68,15 @@ struct PairResult {
 };
 
 // Runs a fresh estimator over each pair for `frames` frames (a still camera) and scores the last
-// estimate. `by_condition` gets one row per condition in the set's order, then "all".
+// estimate. Each pair's GA is seeded from its name and `seed`, so a pair scores the same in any
+// set that holds it (a subset, a resumed render, another order), and another `seed` shows how much
+// a score owes to the GA's draw. One row per condition in the set's order, then "all".
 std::vector<ConditionScore> score_validation_set(const hal::StereoRig& rig,
                                                  const hal::MarkerModel& marker,
                                                  const estimator::EstimatorParams& params,
                                                  const std::vector<ValidationPair>& pairs,
-                                                 int frames, std::vector<PairResult>* details);
+                                                 int frames, std::vector<PairResult>* details,
+                                                 std::uint64_t seed = 0);
 
 // The same scores split by the marker's true range at `edges_m` (ascending, > 0): where in each
 // condition the estimator gives up. One row per condition and non-empty band, in the set's order.

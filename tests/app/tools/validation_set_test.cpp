@@ -59,6 +59,25 @@ TEST(ValidationSet, WhatTheEstimatorCallsOkIsRight) {
   }
 }
 
+TEST(ValidationSet, APairScoresTheSameInAnySetThatHoldsIt) {
+  const AppConfig config = load_app_config(default_config_path());
+  const hal::StereoRig rig = load_rig(config);
+  const std::vector<ValidationPair> sample = load_validation_set(kSample);
+  ASSERT_GE(sample.size(), 3u);
+  const std::vector<ValidationPair> three(sample.begin(), sample.begin() + 3);
+  const std::vector<ValidationPair> alone = {three[2]};
+  std::vector<PairResult> in_three, by_itself;
+  score_validation_set(rig, config.marker, config.estimator, three, 3, &in_three);
+  score_validation_set(rig, config.marker, config.estimator, alone, 3, &by_itself);
+  ASSERT_EQ(in_three.size(), 3u);
+  ASSERT_EQ(by_itself.size(), 1u);
+  EXPECT_EQ(in_three[2].pair->name, by_itself[0].pair->name);
+  // Seeded by its name, not its place: the same GA, the same estimate to the bit.
+  EXPECT_EQ(in_three[2].translation_mm, by_itself[0].translation_mm);
+  EXPECT_EQ(in_three[2].rotation_deg, by_itself[0].rotation_deg);
+  EXPECT_EQ(in_three[2].ok, by_itself[0].ok);
+}
+
 PairResult result_at(const ValidationPair& pair, double range_m, bool ok, double error_mm) {
   PairResult r;
   r.pair = &pair;
