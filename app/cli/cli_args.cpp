@@ -1,6 +1,7 @@
 // Strict option parsing: unknown options, missing values and bad numbers are usage errors.
 #include "app/cli/cli_args.hpp"
 
+#include <algorithm>
 #include <cerrno>
 #include <cstdlib>
 
@@ -74,6 +75,23 @@ double CliArgs::get_double(const std::string& name, double fallback, double min,
                      std::to_string(min) + ", " + std::to_string(max) + "], got '" + text + "'");
   }
   return v;
+}
+
+std::vector<std::string> CliArgs::get_list(const std::string& name) const {
+  std::vector<std::string> items;
+  if (!has(name)) return items;
+  const std::string text = get(name);
+  for (std::size_t start = 0; start <= text.size();) {
+    const std::size_t comma = std::min(text.find(',', start), text.size());
+    items.push_back(text.substr(start, comma - start));
+    if (items.back().empty()) {
+      throw UsageError("rovctl " + command_ + ": " + name +
+                       " must be items separated by single commas, got '" + text +
+                       "' (an empty item at character " + std::to_string(start + 1) + ")");
+    }
+    start = comma + 1;
+  }
+  return items;
 }
 
 }  // namespace rovctl::app

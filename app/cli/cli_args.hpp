@@ -20,6 +20,9 @@ class CliArgs {
   std::vector<std::string> all(const std::string& name) const;
   long get_int(const std::string& name, long fallback, long min, long max) const;
   double get_double(const std::string& name, double fallback, double min, double max) const;
+  // A comma-separated value (`--only a,b`): its items in order, none if the option is absent.
+  // An empty item (`a,,b`, `a,`, an empty value) is a usage error naming the option.
+  std::vector<std::string> get_list(const std::string& name) const;
 
  private:
   std::string command_;

@@ -205,23 +205,19 @@ void print_figures(const ModeFigures& m, const std::string& mode, int cap) {
 }
 
 // `--range-bands-m 0.5,1.0,1.3`: the edges between range bands, m, ascending.
-std::vector<double> range_edges(const std::string& text) {
+std::vector<double> range_edges(const CliArgs& args) {
+  if (!args.has("--range-bands-m")) return {0.5, 1.0, 1.3};
   std::vector<double> edges;
-  std::size_t start = 0;
-  while (start <= text.size()) {
-    const std::size_t comma = std::min(text.find(',', start), text.size());
-    const std::string item = text.substr(start, comma - start);
+  for (const std::string& item : args.get_list("--range-bands-m")) {
     char* end = nullptr;
     const double v = std::strtod(item.c_str(), &end);
-    if (item.empty() || *end != '\0' || !(v > 0.0 && v <= 100.0) ||
-        (!edges.empty() && !(v > edges.back()))) {
+    if (*end != '\0' || !(v > 0.0 && v <= 100.0) || (!edges.empty() && !(v > edges.back()))) {
       throw UsageError(
           "rovctl bench: --range-bands-m must be ascending ranges in (0, 100] m separated by "
           "commas, got '" +
-          text + "' (at '" + item + "')");
+          args.get("--range-bands-m") + "' (at '" + item + "')");
     }
     edges.push_back(v);
-    start = comma + 1;
   }
   return edges;
 }
@@ -345,8 +341,7 @@ int command_bench(const Words& words) {
     return bench_set(config, rig, args.get("--set"),
                      static_cast<int>(args.get_int("--frames", 10, 1, 10000)),
                      static_cast<std::uint64_t>(args.get_int("--seed", 0, 0, 1000000)),
-                     range_edges(args.get("--range-bands-m", "0.5,1.0,1.3")), args.has("--json"),
-                     args.has("--verbose"));
+                     range_edges(args), args.has("--json"), args.has("--verbose"));
   }
   const int n_pairs = static_cast<int>(args.get_int("--pairs", 100, 3, 100000));
   const int cap = static_cast<int>(args.get_int("--frame-cap", 100, 1, 100000));

@@ -2,7 +2,6 @@
 // HAL (transient ones --trials times), one row per fault; exit 1 when a row misses the acceptance.
 #include <algorithm>
 #include <iostream>
-#include <sstream>
 #include <thread>
 
 #include "app/cli/cli_args.hpp"
@@ -32,10 +31,7 @@ int command_faults(const Words& words) {
   options.max_time_s = args.get_double("--max-time", options.max_time_s, 1.0, 3600.0);
   options.jobs = static_cast<int>(args.get_int(
       "--jobs", static_cast<long>(std::max(1u, std::thread::hardware_concurrency())), 1, 64));
-  std::stringstream only(args.get("--only"));
-  for (std::string name; std::getline(only, name, ',');) {
-    if (!name.empty()) options.only.push_back(name);
-  }
+  options.only = args.get_list("--only");
 
   const AppConfig config = load_app_config(config_file);
   const hal::StereoRig rig = load_rig(config);

@@ -95,10 +95,7 @@ int run_study_command(const std::vector<std::string>& words, std::ostream& out, 
       std::clamp(std::thread::hardware_concurrency(), 1u, 2u));  // the project's two cores
   std::vector<GaCombination> wanted_settings;
   if (args.has("--only")) {
-    const std::string list = args.get("--only");
-    for (std::size_t start = 0; start <= list.size();) {
-      const std::size_t comma = std::min(list.find(',', start), list.size());
-      const std::string name = list.substr(start, comma - start);
+    for (const std::string& name : args.get_list("--only")) {
       const bool known = std::any_of(settings.variants.begin(), settings.variants.end(),
                                      [&name](const StudyVariant& v) { return v.name == name; });
       if (!known) {
@@ -107,13 +104,11 @@ int run_study_command(const std::vector<std::string>& words, std::ostream& out, 
         throw UsageError("rovctl study --only: no variant '" + name + "' (variants:" + names + ")");
       }
       settings.only.push_back(name);
-      start = comma + 1;
     }
   }
   if (args.has("--setting")) {
     // population/selection/mutation, as the report names them; each must be one of the study's.
-    std::istringstream list(args.get("--setting"));
-    for (std::string item; std::getline(list, item, ',');) {
+    for (const std::string& item : args.get_list("--setting")) {
       GaCombination c;
       char slash1 = 0, slash2 = 0;
       std::istringstream in(item);

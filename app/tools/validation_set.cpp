@@ -87,6 +87,17 @@ std::uint64_t seed_of(const std::string& name, std::uint64_t seed) {
   return h;
 }
 
+// The conditions as the set first names them: the order of every table the tool prints.
+std::vector<std::string> conditions_in_set_order(const std::vector<PairResult>& results) {
+  std::vector<std::string> order;
+  for (const PairResult& r : results) {
+    if (std::find(order.begin(), order.end(), r.pair->condition) == order.end()) {
+      order.push_back(r.pair->condition);
+    }
+  }
+  return order;
+}
+
 }  // namespace
 
 std::vector<ValidationPair> load_validation_set(const std::string& dir) {
@@ -134,7 +145,6 @@ std::vector<ConditionScore> score_validation_set(const hal::StereoRig& rig,
                                                  const std::vector<ValidationPair>& pairs,
                                                  int frames, std::vector<PairResult>* details,
                                                  std::uint64_t seed) {
-  std::vector<std::string> order;
   std::map<std::string, std::vector<PairResult>> by_condition;
   std::map<std::string, std::vector<double>> ms_by_condition;
   std::vector<PairResult> all;
@@ -172,13 +182,12 @@ std::vector<ConditionScore> score_validation_set(const hal::StereoRig& rig,
     r.translation_mm =
         (e.T_cl_marker.translation() - pair.T_cl_marker.translation()).norm() * 1000.0;
     r.rotation_deg = angle_deg(e.T_cl_marker.linear(), pair.T_cl_marker.linear());
-    if (by_condition.find(pair.condition) == by_condition.end()) order.push_back(pair.condition);
     by_condition[pair.condition].push_back(r);
     all.push_back(r);
     if (details != nullptr) details->push_back(r);
   }
   std::vector<ConditionScore> scores;
-  for (const std::string& c : order)
+  for (const std::string& c : conditions_in_set_order(all))
     scores.push_back(summarise(c, by_condition[c], ms_by_condition[c]));
   scores.push_back(summarise("all", all, all_ms));
   return scores;
@@ -191,14 +200,8 @@ std::vector<ConditionScore> score_by_range(const std::vector<PairResult>& detail
       throw std::invalid_argument("range edges must be positive and ascending");
     }
   }
-  std::vector<std::string> order;
-  for (const PairResult& r : details) {
-    if (std::find(order.begin(), order.end(), r.pair->condition) == order.end()) {
-      order.push_back(r.pair->condition);
-    }
-  }
   std::vector<ConditionScore> rows;
-  for (const std::string& c : order) {
+  for (const std::string& c : conditions_in_set_order(details)) {
     for (std::size_t band = 0; band <= edges_m.size(); ++band) {
       const double from = band == 0 ? 0.0 : edges_m[band - 1];
       const double to =
