@@ -61,6 +61,12 @@ void describe(hal::ParamVisitor& v, EstimatorParams& p) {
            "improved mode: a frame whose estimate is still not ok after the second look is "
            "median-filtered with this aperture (3 or 5) and looked at once more, kept if ok: "
            "sensor noise and JPEG blocks break a small sphere's rim into specks; 0 off"});
+  v.param("ga_restart_frames", p.ga_restart_frames,
+          {"frames", 0, 1000,
+           "improved mode: after this many frames in a row whose pose neither the centroids nor "
+           "the rims could confirm, the next frame's GA starts from a fresh population: beside a "
+           "sphere cut by the image edge it can settle 30-80 deg off, where neither refinement "
+           "is accepted, and stay; 0 off"});
   v.param("sphere_support", p.sphere_support,
           {"-", 0.0, 1.0,
            "score of one sphere in one view (inner hits minus ring hits) at which it counts as "

@@ -94,6 +94,9 @@ struct EstimatorParams {
   // Improved mode: and if that is not ok either, the pair median-filtered with this aperture is
   // looked at once more, kept only if ok. 0 off.
   int denoise_retry_px = 5;
+  // Improved mode: after this many frames in a row that no refinement confirmed, the GA starts
+  // the next frame from a fresh population. 0 off.
+  int ga_restart_frames = 3;
   // Improvements (used when mode is "improved").
   bool blob_seeding = true;  // seed individuals from colour blobs triangulated in 3D
   bool refine_elite = true;  // least-squares refinement of the elite on blob centroids

@@ -80,8 +80,24 @@ bool PoseEstimator::segment(const cv::Mat& left_bgr, const cv::Mat& right_bgr) {
 }
 
 PoseEstimate PoseEstimator::estimate() {
+  if (input_error_ != nullptr) return estimate_on_labels(Look::first);
+  // A population settled off the marker (beside a sphere cut by the image edge, 30-80 deg off)
+  // is where neither refinement can start from, and elitism keeps it there: draw it afresh.
+  const bool restart = params_.improved() && params_.ga_restart_frames > 0 &&
+                       frames_unconfirmed_ >= params_.ga_restart_frames;
+  if (restart) {
+    ga_.randomise();
+    frames_unconfirmed_ = 0;
+  }
+  PoseEstimate e = estimate_all_looks();
+  e.ga_restarted = restart;
+  frames_unconfirmed_ = e.refined || e.rim_refined ? 0 : frames_unconfirmed_ + 1;
+  return e;
+}
+
+PoseEstimate PoseEstimator::estimate_all_looks() {
   PoseEstimate first = estimate_on_labels(Look::first);
-  if (first.ok || input_error_ != nullptr) return first;
+  if (first.ok) return first;
   int generations = first.generations;
   if (water_segmenter_) {
     // Water takes red first: far out in coastal water the red sphere is a greyish brown under

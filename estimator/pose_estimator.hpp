@@ -60,6 +60,9 @@ struct PoseEstimate {
   // Improved mode: this estimate came from the third look, the pair median-filtered
   // (EstimatorParams::denoise_retry_px), after the first two were not ok.
   bool denoised = false;
+  // Improved mode: this frame's GA started from a fresh population, the last
+  // EstimatorParams::ga_restart_frames frames having had no refinement accepted.
+  bool ga_restarted = false;
   bool ok = false;
   int generations = 0;  // generations run this frame
   std::chrono::nanoseconds compute_time{0};
@@ -104,6 +107,8 @@ class PoseEstimator {
   BlobSeeder blobs_;
   PoseRefiner refiner_;
   RimRefiner rim_;
+  // The first look, and the second and third when the one before was not ok.
+  PoseEstimate estimate_all_looks();
   enum class Look { first, water, denoised };  // which labels estimate_on_labels sees
   PoseEstimate estimate_on_labels(Look look);
   // When T_mirror, the triangle's other tilt, fits the data as well as T and is recognised, the
@@ -117,6 +122,7 @@ class PoseEstimator {
   cv::Mat denoised_[2];  // the third look's median-filtered pair, allocated at construction
   const cv::Mat* images_[2] = {nullptr, nullptr};  // the last segment()'s, for the second look
   long extra_evaluations_ = 0;
+  int frames_unconfirmed_ = 0;  // frames in a row with no refinement accepted
   std::chrono::steady_clock::time_point frame_start_{};
   const char* input_error_ = nullptr;
 };

@@ -107,6 +107,7 @@ int command_estimate(const Words& words) {
         .field("refine_rms_px", estimate.rim_refined ? estimate.rim_rms_px : estimate.refine_rms_px)
         .field("water_corrected", estimate.water_corrected)
         .field("denoised", estimate.denoised)
+        .field("ga_restarted", estimate.ga_restarted)
         .field("mirror_fits", estimate.mirror_fits)
         .begin_array("rim_support")
         .begin_array()

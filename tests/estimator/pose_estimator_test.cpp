@@ -57,6 +57,43 @@ TEST(PoseEstimator, FaithfulModeClimbsAndIsReproducible) {
   EXPECT_GT(last, first);
 }
 
+// With nothing to confirm a pose (no marker in view) the GA starts afresh after every
+// ga_restart_frames frames; while the refinement confirms the marker it never does, and 0 is off.
+TEST(PoseEstimator, TheGaStartsAfreshOnlyAfterFramesNoRefinementConfirmed) {
+  TestScene scene;
+  scene.render(hal::make_pose({0.05, 0.01, 0.5}, Eigen::Quaterniond::Identity()));
+  const cv::Mat empty_left(scene.left_bgr.size(), CV_8UC3, cv::Scalar(90, 70, 40));
+  const cv::Mat empty_right(scene.right_bgr.size(), CV_8UC3, cv::Scalar(90, 70, 40));
+  EstimatorParams p;
+  p.ga_restart_frames = 3;
+  PoseEstimator est(scene.rig, scene.marker, p, 1);
+  std::vector<int> restarted_at;
+  for (int frame = 1; frame <= 10; ++frame) {
+    const PoseEstimate e = est.update(empty_left, empty_right);
+    ASSERT_FALSE(e.refined || e.rim_refined);
+    if (e.ga_restarted) restarted_at.push_back(frame);
+  }
+  EXPECT_EQ(restarted_at, (std::vector<int>{4, 7, 10}));
+
+  for (int frame = 1; frame <= 10; ++frame) {
+    const PoseEstimate e = est.update(scene.left_bgr, scene.right_bgr);
+    EXPECT_TRUE(e.ok) << frame;
+    EXPECT_FALSE(e.ga_restarted) << frame;
+  }
+
+  p.ga_restart_frames = 0;
+  PoseEstimator off(scene.rig, scene.marker, p, 1);
+  for (int frame = 1; frame <= 10; ++frame) {
+    EXPECT_FALSE(off.update(empty_left, empty_right).ga_restarted) << frame;
+  }
+  p.ga_restart_frames = 3;
+  p.mode = "faithful";
+  PoseEstimator faithful(scene.rig, scene.marker, p, 1);
+  for (int frame = 1; frame <= 10; ++frame) {
+    EXPECT_FALSE(faithful.update(empty_left, empty_right).ga_restarted) << "the paper's loop";
+  }
+}
+
 // The estimator runs inside the tick: a wrong image is reported in the estimate, never thrown.
 TEST(PoseEstimator, WrongImageSizeIsReportedNotThrown) {
   TestScene scene;
