@@ -2,7 +2,9 @@
 #include "estimator/hue_segmenter.hpp"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
+#include <cstring>
 #include <opencv2/core.hpp>
 
 namespace rovctl::estimator {
@@ -35,9 +37,7 @@ hal::ColourClass HueSegmenter::classify_exact(const hal::MarkerModel& marker, do
 
 HueSegmenter::HueSegmenter(const hal::MarkerModel& marker, double water_correction)
     : lut_(1u << 18), water_correction_(std::clamp(water_correction, 0.0, 1.0)) {
-  for (int c = 0; c < 3; ++c) {
-    for (int v = 0; v < 256; ++v) gain_table_[c][v] = static_cast<std::uint8_t>(v);
-  }
+  set_index_bits();
   // Each 6-bit cell is classified by its centre colour (the 4 grey levels it spans average to
   // +1.5).
   for (int b = 0; b < 64; ++b) {
@@ -82,8 +82,16 @@ void HueSegmenter::update_gains(const cv::Mat& bgr) {
     // Bounded: in dark, deep-blue water a near-empty red channel would otherwise be multiplied
     // into noise.
     gains_[c] = std::clamp(std::pow(mean / median[c], water_correction_), 1.0 / kMaxGain, kMaxGain);
+  }
+  set_index_bits();
+}
+
+void HueSegmenter::set_index_bits() {
+  for (int c = 0; c < 3; ++c) {
+    const int shift = 12 - 6 * c;  // B, G, R: the index's high, middle and low six bits
     for (int v = 0; v < 256; ++v) {
-      gain_table_[c][v] = static_cast<std::uint8_t>(std::min(255.0, std::round(gains_[c] * v)));
+      const auto gained = static_cast<std::uint32_t>(std::min(255.0, std::round(gains_[c] * v)));
+      index_bits_[c][v] = (gained >> 2) << shift;
     }
   }
 }
@@ -91,25 +99,32 @@ void HueSegmenter::update_gains(const cv::Mat& bgr) {
 void HueSegmenter::segment(const cv::Mat& bgr, cv::Mat& labels) {
   CV_Assert(bgr.type() == CV_8UC3);
   labels.create(bgr.rows, bgr.cols, CV_8UC1);
-  const std::uint8_t* lut = lut_.data();
-  if (water_correction_ <= 0.0) {
-    for (int v = 0; v < bgr.rows; ++v) {
-      const std::uint8_t* in = bgr.ptr<std::uint8_t>(v);
-      std::uint8_t* out = labels.ptr<std::uint8_t>(v);
-      for (int u = 0; u < bgr.cols; ++u, in += 3) out[u] = lut[index(in[0], in[1], in[2])];
-    }
-    return;
-  }
-  update_gains(bgr);
-  const std::uint8_t* gb = gain_table_[0].data();
-  const std::uint8_t* gg = gain_table_[1].data();
-  const std::uint8_t* gr = gain_table_[2].data();
-  for (int v = 0; v < bgr.rows; ++v) {
+  if (water_correction_ > 0.0) update_gains(bgr);
+  // Pointers held in locals: a byte store may alias anything, and the loop would reread members.
+  const std::uint8_t* const lut = lut_.data();
+  const std::uint32_t* const ib = index_bits_[0].data();
+  const std::uint32_t* const ig = index_bits_[1].data();
+  const std::uint32_t* const ir = index_bits_[2].data();
+  const int rows = bgr.rows, cols = bgr.cols;
+  for (int v = 0; v < rows; ++v) {
     const std::uint8_t* in = bgr.ptr<std::uint8_t>(v);
-    std::uint8_t* out = labels.ptr<std::uint8_t>(v);
-    for (int u = 0; u < bgr.cols; ++u, in += 3) {
-      out[u] = lut[index(gb[in[0]], gg[in[1]], gr[in[2]])];
+    std::uint8_t* const out = labels.ptr<std::uint8_t>(v);
+    int u = 0;
+    if constexpr (std::endian::native == std::endian::little) {
+      // Four pixels from two loads instead of twelve: the loads, not the table, bound this loop
+      // (a third faster on the bench; a packed 2-bit table that stays in L1 was not).
+      for (; u + 4 <= cols; u += 4, in += 12) {
+        std::uint64_t a;
+        std::uint32_t b;
+        std::memcpy(&a, in, sizeof a);
+        std::memcpy(&b, in + 8, sizeof b);
+        out[u] = lut[ib[a & 0xff] | ig[(a >> 8) & 0xff] | ir[(a >> 16) & 0xff]];
+        out[u + 1] = lut[ib[(a >> 24) & 0xff] | ig[(a >> 32) & 0xff] | ir[(a >> 40) & 0xff]];
+        out[u + 2] = lut[ib[(a >> 48) & 0xff] | ig[a >> 56] | ir[b & 0xff]];
+        out[u + 3] = lut[ib[(b >> 8) & 0xff] | ig[(b >> 16) & 0xff] | ir[b >> 24]];
+      }
     }
+    for (; u < cols; ++u, in += 3) out[u] = lut[ib[in[0]] | ig[in[1]] | ir[in[2]]];
   }
 }
 

@@ -40,12 +40,14 @@ class HueSegmenter {
            static_cast<std::uint32_t>(r >> 2);
   }
   void update_gains(const cv::Mat& bgr);
+  void set_index_bits();
 
   std::vector<std::uint8_t> lut_;  // 2^18 entries, 6 bits per channel
   double water_correction_ = 0.0;
   std::array<double, 3> gains_{1.0, 1.0, 1.0};
-  std::array<std::array<std::uint8_t, 256>, 3> gain_table_{};  // per channel: v -> min(255, g v)
   std::array<std::array<std::uint32_t, 256>, 3> histogram_{};
+  // Per channel: v -> min(255, gain v)'s six bits, in their place in the table's index.
+  std::array<std::array<std::uint32_t, 256>, 3> index_bits_{};
 };
 
 }  // namespace rovctl::estimator

@@ -59,7 +59,10 @@ PoseEstimator::PoseEstimator(const hal::StereoRig& rig, const hal::MarkerModel& 
   if (params_.improved()) fitness_.enable_border_occluder();
 }
 
-void PoseEstimator::reset() { ga_.randomise(); }
+void PoseEstimator::reset() {
+  ga_.randomise();
+  frames_unconfirmed_ = 0;
+}
 
 PoseEstimate PoseEstimator::update(const cv::Mat& left_bgr, const cv::Mat& right_bgr) {
   segment(left_bgr, right_bgr);

@@ -192,9 +192,10 @@ bool RimRefiner::residuals(const Edges& edges, const Eigen::Isometry3d& T, Resid
   return r.head(edges.count).allFinite();
 }
 
-bool RimRefiner::jacobian(const Edges& edges, const Eigen::Isometry3d& T, Jacobian& J) const {
+bool RimRefiner::jacobian(const Edges& edges, const Eigen::Isometry3d& T, const Residuals& rb,
+                          Jacobian& J) const {
   constexpr double h = 1e-6;  // m
-  Residuals rk, rb;
+  Residuals rk;
   for (int view = 0; view < 2; ++view) {
     // The centre in the view's frame c_v = R_v (exp(w) R p + t + dt) + t_v: dc_v/dw = -R_v [R p]x,
     // dc_v/dt = R_v.
@@ -204,9 +205,6 @@ bool RimRefiner::jacobian(const Edges& edges, const Eigen::Isometry3d& T, Jacobi
       const int from = edges.first[view][s], to = edges.first[view][s + 1];
       if (from == to) continue;
       const Eigen::Vector3d c = centre_in_view(T, view, s);
-      Silhouette base;
-      if (!predict_one(view, s, c, base)) return false;
-      silhouette_residuals(edges, view, s, base, rb);
       Eigen::Matrix<double, Eigen::Dynamic, 3, 0, kRays, 3> dr_dc(to - from, 3);
       for (int k = 0; k < 3; ++k) {
         Silhouette sil;
@@ -239,11 +237,12 @@ bool RimRefiner::refine(const cv::Mat& left_labels, const cv::Mat& right_labels,
   double offset_px = 0.0;
   constexpr double kOffsetPriorPx = 1.0;
   Edges edges;
-  Residuals r0, w;
+  // raw0: r0 before the offset, at T; the Jacobian's differences are taken from it.
+  Residuals r0, raw0, w;
   Jacobian J;
-  auto full_residuals = [&](const Eigen::Isometry3d& at, double off, Residuals& r) {
-    if (!residuals(edges, at, r)) return false;
-    r.head(edges.count).array() -= off;
+  auto full_residuals = [&](const Eigen::Isometry3d& at, double off, Residuals& raw, Residuals& r) {
+    if (!residuals(edges, at, raw)) return false;
+    r.head(edges.count) = raw.head(edges.count).array() - off;
     return true;
   };
   auto weighted_cost = [&](const Residuals& r, double off) {
@@ -252,9 +251,9 @@ bool RimRefiner::refine(const cv::Mat& left_labels, const cv::Mat& right_labels,
   };
   // Normal equations of the weighted problem in (rotation vector, translation, offset), with the
   // offset's prior.
-  auto normal_equations = [&](const Eigen::Isometry3d& at, const Residuals& r, double off,
-                              Matrix7& A, Vector7& g) {
-    if (!jacobian(edges, at, J)) return false;
+  auto normal_equations = [&](const Eigen::Isometry3d& at, const Residuals& raw, const Residuals& r,
+                              double off, Matrix7& A, Vector7& g) {
+    if (!jacobian(edges, at, raw, J)) return false;
     A.setZero();
     g.setZero();
     for (int i = 0; i < edges.count; ++i) {
@@ -272,7 +271,7 @@ bool RimRefiner::refine(const cv::Mat& left_labels, const cv::Mat& right_labels,
     Silhouettes sil;
     predict(T, sil);
     find_edges(labels, sil, edges);
-    if (edges.count < kMinInliers || !full_residuals(T, offset_px, r0)) return false;
+    if (edges.count < kMinInliers || !full_residuals(T, offset_px, raw0, r0)) return false;
     double lambda = 1e-3;
     Matrix7 A;
     Vector7 g;
@@ -280,7 +279,7 @@ bool RimRefiner::refine(const cv::Mat& left_labels, const cv::Mat& right_labels,
     for (int iter = 0; iter < 10; ++iter) {
       if (moved) {
         for (int i = 0; i < edges.count; ++i) w(i) = weight(r0(i), band);
-        if (!normal_equations(T, r0, offset_px, A, g)) return false;
+        if (!normal_equations(T, raw0, r0, offset_px, A, g)) return false;
       }
       Matrix7 damped = A;
       damped.diagonal() *= 1.0 + lambda;
@@ -288,13 +287,14 @@ bool RimRefiner::refine(const cv::Mat& left_labels, const cv::Mat& right_labels,
       const Vector7 step = -damped.ldlt().solve(g);
       if (!step.allFinite()) return false;
       const Eigen::Isometry3d candidate = hal::perturbed(T, step.head<6>());
-      Residuals r1;
-      moved = full_residuals(candidate, offset_px + step(6), r1) &&
+      Residuals raw1, r1;
+      moved = full_residuals(candidate, offset_px + step(6), raw1, r1) &&
               weighted_cost(r1, offset_px + step(6)) < weighted_cost(r0, offset_px);
       if (moved) {
         T = candidate;
         offset_px += step(6);
         r0 = r1;
+        raw0 = raw1;
         lambda = std::max(1e-6, lambda * 0.3);
         // 10 um and 10 urad: far below what the rims can tell.
         if (step.head<6>().norm() < 1e-5) break;
@@ -310,7 +310,7 @@ bool RimRefiner::refine(const cv::Mat& left_labels, const cv::Mat& right_labels,
     Silhouettes sil;
     predict(T, sil);
     find_edges(labels, sil, edges);
-    if (!full_residuals(T, offset_px, r0)) return false;
+    if (!full_residuals(T, offset_px, raw0, r0)) return false;
   }
   RimFit result;
   double sum2 = 0.0;
@@ -341,7 +341,7 @@ bool RimRefiner::refine(const cv::Mat& left_labels, const cv::Mat& right_labels,
                             std::sqrt(result.inliers / result.independent_points);
     Matrix7 A;
     Vector7 g;
-    if (normal_equations(T, r0, offset_px, A, g)) {
+    if (normal_equations(T, raw0, r0, offset_px, A, g)) {
       // The pose's marginal covariance: the offset is a nuisance parameter.
       const Matrix7 cov = sigma_px * sigma_px * A.ldlt().solve(Matrix7::Identity());
       result.covariance = cov.topLeftCorner<6, 6>();

@@ -90,8 +90,10 @@ class RimRefiner {
                             Residuals& r) const;
   bool residuals(const Edges& edges, const Eigen::Isometry3d& T, Residuals& r) const;
   // d residual / d (rotation vector, translation), through each sphere's centre: a silhouette
-  // depends on its sphere's centre alone, so three differences per silhouette suffice.
-  bool jacobian(const Edges& edges, const Eigen::Isometry3d& T, Jacobian& J) const;
+  // depends on its sphere's centre alone, so three differences per silhouette suffice, each from
+  // rb, residuals() at T.
+  bool jacobian(const Edges& edges, const Eigen::Isometry3d& T, const Residuals& rb,
+                Jacobian& J) const;
 
   hal::StereoRig rig_;
   hal::MarkerModel marker_;

@@ -89,4 +89,16 @@ void BM_EstimatorFrame(benchmark::State& state) {
 }
 BENCHMARK(BM_EstimatorFrame)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
 
+// A frame from a fresh population, as `rovctl bench` times its cold starts: the GA's whole
+// search, then the refinements. The steady frame above starts beside the answer.
+void BM_EstimatorColdFrame(benchmark::State& state) {
+  Scene& s = scene();
+  estimator::PoseEstimator est(s.rig, s.marker, estimator::EstimatorParams{}, 1);
+  for (auto _ : state) {
+    est.reset();
+    benchmark::DoNotOptimize(est.update(s.l, s.r));
+  }
+}
+BENCHMARK(BM_EstimatorColdFrame)->Unit(benchmark::kMillisecond);
+
 }  // namespace

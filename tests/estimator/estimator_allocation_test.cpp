@@ -19,8 +19,8 @@ TEST(EstimatorAllocation, FramesAllocateNothingAfterStartUpWithOrWithoutTheMarke
   if (!malloc_hooks_installed()) GTEST_SKIP() << "AddressSanitizer owns malloc: no counting hooks";
   testing::TestScene scene;
   scene.render(hal::make_pose({0.05, 0.01, 0.6}, Eigen::Quaterniond::Identity()));
-  const cv::Mat empty_left(scene.left_bgr.size(), CV_8UC3, cv::Scalar(90, 70, 40));
-  const cv::Mat empty_right(scene.right_bgr.size(), CV_8UC3, cv::Scalar(90, 70, 40));
+  const cv::Mat empty_left = scene.empty_image();
+  const cv::Mat empty_right = scene.empty_image();
   PoseEstimator est(scene.rig, scene.marker, EstimatorParams{}, 3);
   // Start-up: one frame of each kind sizes what OpenCV sizes on first use.
   est.update(scene.left_bgr, scene.right_bgr);

@@ -3,6 +3,10 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
+#include <opencv2/core.hpp>
+
 #include "estimator/pose_refiner.hpp"
 #include "test_scene.hpp"
 
@@ -92,6 +96,40 @@ TEST(HueSegmenter, TableAgreesWithTheHsvRule) {
 // brown (BGR 86, 91, 131; saturation 0.34) on a green-blue cast (BGR 129, 146, 72). The standard
 // marker's red floor (0.2) keeps it as it is; with the other colours' floor (0.35) it is lost,
 // and dividing the water's cast out finds it again.
+// segment() reads four pixels at a time: every pixel, the last ones of an odd row and a view into
+// a wider image included, gets the class of its own colour, before and after the water's gains.
+TEST(HueSegmenter, EveryPixelGetsTheClassOfItsColourAtAnyRowWidth) {
+  const hal::MarkerModel marker = hal::MarkerModel::standard();
+  cv::Mat wide(23, 50, CV_8UC3);
+  cv::randu(wide, cv::Scalar(0, 0, 0), cv::Scalar(256, 200, 90));  // water's cast: red faded
+  for (const int width : {3, 4, 37}) {
+    const cv::Mat image = wide(cv::Rect(5, 2, width, 19));  // rows not contiguous
+    for (const double correction : {0.0, 0.75}) {
+      HueSegmenter seg(marker, correction);
+      cv::Mat labels;
+      seg.segment(image, labels);
+      ASSERT_EQ(labels.size(), image.size());
+      const std::array<double, 3>& gain = seg.gains();
+      if (correction > 0.0) {
+        EXPECT_GT(gain[2], 1.3);  // the red channel raised: the gains are in play
+      }
+      auto gained = [&](int c, std::uint8_t v) {
+        return static_cast<std::uint8_t>(std::min(255.0, std::round(gain[c] * v)));
+      };
+      int wrong = 0;
+      for (int v = 0; v < image.rows; ++v) {
+        for (int u = 0; u < image.cols; ++u) {
+          const cv::Vec3b p = image.at<cv::Vec3b>(v, u);
+          const hal::ColourClass want =
+              seg.classify(gained(0, p[0]), gained(1, p[1]), gained(2, p[2]));
+          wrong += labels.at<std::uint8_t>(v, u) != static_cast<std::uint8_t>(want);
+        }
+      }
+      EXPECT_EQ(wrong, 0) << "width " << width << ", correction " << correction;
+    }
+  }
+}
+
 TEST(HueSegmenter, AFadedRedInTurbidWaterIsFound) {
   cv::Mat image(120, 160, CV_8UC3, cv::Scalar(129, 146, 72));
   image(cv::Rect(70, 50, 12, 12)).setTo(cv::Scalar(86, 91, 131));

@@ -62,8 +62,8 @@ TEST(PoseEstimator, FaithfulModeClimbsAndIsReproducible) {
 TEST(PoseEstimator, TheGaStartsAfreshOnlyAfterFramesNoRefinementConfirmed) {
   TestScene scene;
   scene.render(hal::make_pose({0.05, 0.01, 0.5}, Eigen::Quaterniond::Identity()));
-  const cv::Mat empty_left(scene.left_bgr.size(), CV_8UC3, cv::Scalar(90, 70, 40));
-  const cv::Mat empty_right(scene.right_bgr.size(), CV_8UC3, cv::Scalar(90, 70, 40));
+  const cv::Mat empty_left = scene.empty_image();
+  const cv::Mat empty_right = scene.empty_image();
   EstimatorParams p;
   p.ga_restart_frames = 3;
   PoseEstimator est(scene.rig, scene.marker, p, 1);
@@ -80,6 +80,14 @@ TEST(PoseEstimator, TheGaStartsAfreshOnlyAfterFramesNoRefinementConfirmed) {
     EXPECT_TRUE(e.ok) << frame;
     EXPECT_FALSE(e.ga_restarted) << frame;
   }
+
+  // reset() draws a fresh population itself: the frames unconfirmed before it no longer count.
+  restarted_at.clear();
+  for (int frame = 1; frame <= 7; ++frame) {
+    if (frame == 4) est.reset();
+    if (est.update(empty_left, empty_right).ga_restarted) restarted_at.push_back(frame);
+  }
+  EXPECT_EQ(restarted_at, (std::vector<int>{7}));
 
   p.ga_restart_frames = 0;
   PoseEstimator off(scene.rig, scene.marker, p, 1);

@@ -32,6 +32,11 @@ struct TestScene {
   void render(const Eigen::Isometry3d& T_cl_marker, std::uint64_t seed = 1) {
     hal::mock::render_stereo(left, right, rig, T_cl_marker, seed, left_bgr, right_bgr);
   }
+
+  // A pair of plain water, no marker: frames in which nothing can be confirmed.
+  cv::Mat empty_image() const {
+    return cv::Mat(rig.left.height_px, rig.left.width_px, CV_8UC3, cv::Scalar(90, 70, 40));
+  }
 };
 
 // A marker pose z_min..z_max ahead, in view of both cameras, turned up to max_angle_deg.
