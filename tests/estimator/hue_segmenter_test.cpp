@@ -92,10 +92,6 @@ TEST(HueSegmenter, TableAgreesWithTheHsvRule) {
   }
 }
 
-// Turbid coastal water, as the POV-Ray set renders it 1.4 m out: the red sphere is a greyish
-// brown (BGR 86, 91, 131; saturation 0.34) on a green-blue cast (BGR 129, 146, 72). The standard
-// marker's red floor (0.2) keeps it as it is; with the other colours' floor (0.35) it is lost,
-// and dividing the water's cast out finds it again.
 // segment() reads four pixels at a time: every pixel, the last ones of an odd row and a view into
 // a wider image included, gets the class of its own colour, before and after the water's gains.
 TEST(HueSegmenter, EveryPixelGetsTheClassOfItsColourAtAnyRowWidth) {
@@ -130,6 +126,10 @@ TEST(HueSegmenter, EveryPixelGetsTheClassOfItsColourAtAnyRowWidth) {
   }
 }
 
+// Turbid coastal water, as the POV-Ray set renders it 1.4 m out: the red sphere is a greyish
+// brown (BGR 86, 91, 131; saturation 0.34) on a green-blue cast (BGR 129, 146, 72). The standard
+// marker's red floor (0.2) keeps it as it is; with the other colours' floor (0.35) it is lost,
+// and dividing the water's cast out finds it again.
 TEST(HueSegmenter, AFadedRedInTurbidWaterIsFound) {
   cv::Mat image(120, 160, CV_8UC3, cv::Scalar(129, 146, 72));
   image(cv::Rect(70, 50, 12, 12)).setTo(cv::Scalar(86, 91, 131));

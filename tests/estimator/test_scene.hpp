@@ -33,7 +33,7 @@ struct TestScene {
     hal::mock::render_stereo(left, right, rig, T_cl_marker, seed, left_bgr, right_bgr);
   }
 
-  // A pair of plain water, no marker: frames in which nothing can be confirmed.
+  // An image of plain water, no marker: a pair of them is a frame nothing can be confirmed in.
   cv::Mat empty_image() const {
     return cv::Mat(rig.left.height_px, rig.left.width_px, CV_8UC3, cv::Scalar(90, 70, 40));
   }
