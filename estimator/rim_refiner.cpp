@@ -50,10 +50,22 @@ double weight(double r, const Band& band) {
 
 }  // namespace
 
-double RimRefiner::Silhouette::radius_along(const Eigen::Vector2d& d) const {
+double RimRefiner::Silhouette::radius_along(const Eigen::Vector2d& d, int& hint) const {
   const double angle = angle_order(d);
-  const int hi = static_cast<int>(
-      std::upper_bound(pseudo_angle.begin(), pseudo_angle.end(), angle) - pseudo_angle.begin());
+  // The outline's segment is std::upper_bound's answer, the one i with angle[i - 1] <= angle <
+  // angle[i]. Rim points come in angle order, so the last point's segment or the next one mostly
+  // is that i; the binary search is for the rest.
+  auto is_answer = [&](int i) {
+    return (i == 0 || pseudo_angle[i - 1] <= angle) && (i == kPolygon || angle < pseudo_angle[i]);
+  };
+  int hi = hint;
+  if (!is_answer(hi)) {
+    hi = hint < kPolygon && is_answer(hint + 1)
+             ? hint + 1
+             : static_cast<int>(std::upper_bound(pseudo_angle.begin(), pseudo_angle.end(), angle) -
+                                pseudo_angle.begin());
+  }
+  hint = hi;
   const Eigen::Vector2d& pa = offset_px[(hi + kPolygon - 1) % kPolygon];
   const Eigen::Vector2d& pb = offset_px[hi % kPolygon];
   // Where the ray from the centre along d crosses the segment pa-pb.
@@ -129,9 +141,10 @@ void RimRefiner::find_edges(const cv::Mat* labels[2], const Silhouettes& predict
       const Silhouette& sil = predicted[view][s];
       if (!sil.valid) continue;
       const auto colour = static_cast<std::uint8_t>(marker_.spheres[s].colour);
+      int hint = 0;
       for (int k = 0; k < kRays; ++k) {
         const double c = ray_directions()[k].x(), sn = ray_directions()[k].y();
-        const double rho = sil.radius_along(Eigen::Vector2d(c, sn));
+        const double rho = sil.radius_along(Eigen::Vector2d(c, sn), hint);
         const Eigen::Vector2d rim_px = sil.centre_px + rho * Eigen::Vector2d(c, sn);
         if (rim_px.x() < kBorderMarginPx || rim_px.y() < kBorderMarginPx ||
             rim_px.x() > image.cols - 1 - kBorderMarginPx ||
@@ -173,9 +186,10 @@ void RimRefiner::find_edges(const cv::Mat* labels[2], const Silhouettes& predict
 
 void RimRefiner::silhouette_residuals(const Edges& edges, int view, int sphere,
                                       const Silhouette& sil, Residuals& r) const {
+  int hint = 0;
   for (int i = edges.first[view][sphere]; i < edges.first[view][sphere + 1]; ++i) {
     const Eigen::Vector2d d = edges.points[i].uv_px - sil.centre_px;
-    r(i) = d.norm() - sil.radius_along(d);
+    r(i) = d.norm() - sil.radius_along(d, hint);
   }
 }
 

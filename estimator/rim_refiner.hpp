@@ -61,8 +61,9 @@ class RimRefiner {
     // Monotonic in the vertex's angle about the centre (see angle_order in the .cpp), not radians.
     std::array<double, kPolygon> pseudo_angle{};
     std::array<Eigen::Vector2d, kPolygon> offset_px{};
-    // Distance from the centre to the outline along the direction d (not normalised).
-    double radius_along(const Eigen::Vector2d& d) const;
+    // Distance from the centre to the outline along the direction d (not normalised). hint: the
+    // outline segment the last direction crossed (0..kPolygon), tried first; updated.
+    double radius_along(const Eigen::Vector2d& d, int& hint) const;
   };
   using Silhouettes = std::array<std::array<Silhouette, kSpheres>, 2>;
 
