@@ -87,11 +87,12 @@ void HueSegmenter::update_gains(const cv::Mat& bgr) {
 }
 
 void HueSegmenter::set_index_bits() {
+  // index() ors one field per channel, so a pixel's index is the or of its channels' entries,
+  // each index() of that channel alone: the layout stays index()'s.
   for (int c = 0; c < 3; ++c) {
-    const int shift = 12 - 6 * c;  // B, G, R: the index's high, middle and low six bits
     for (int v = 0; v < 256; ++v) {
-      const auto gained = static_cast<std::uint32_t>(std::min(255.0, std::round(gains_[c] * v)));
-      index_bits_[c][v] = (gained >> 2) << shift;
+      const auto q = static_cast<std::uint8_t>(std::min(255.0, std::round(gains_[c] * v)));
+      index_bits_[c][v] = c == 0 ? index(q, 0, 0) : c == 1 ? index(0, q, 0) : index(0, 0, q);
     }
   }
 }

@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "estimator/colour_edge.hpp"
 #include "hal/model/pose.hpp"
 #include "hal/model/sphere_rim.hpp"
 #include "hal/model/unit_circle.hpp"
@@ -131,7 +132,6 @@ void RimRefiner::predict(const Eigen::Isometry3d& T, Silhouettes& out) const {
 void RimRefiner::find_edges(const cv::Mat* labels[2], const Silhouettes& predicted,
                             Edges& edges) const {
   edges.count = 0;
-  constexpr double kStepPx = 0.5;
   for (int view = 0; view < 2; ++view) {
     const cv::Mat& image = *labels[view];
     for (int s = 0; s < spheres_; ++s) {
@@ -152,28 +152,9 @@ void RimRefiner::find_edges(const cv::Mat* labels[2], const Silhouettes& predict
           continue;  // the border hides this part of the rim: no evidence either way
         }
         ++edges.visible_rays[view][s];
-        double edge_t = -1.0;
-        int run = 0;  // consecutive colour samples
-        bool in_colour = false, cut_by_border = false;
-        for (double t = 0.3 * rho; t <= 1.6 * rho + 2.0; t += kStepPx) {
-          // Rounded half away from zero as std::lround does, which costs a library call here.
-          const double x = sil.centre_px.x() + t * c, y = sil.centre_px.y() + t * sn;
-          if (x <= -0.5 || y <= -0.5 || x >= image.cols - 0.5 || y >= image.rows - 0.5) {
-            cut_by_border = in_colour;
-            break;
-          }
-          const int u = static_cast<int>(x + 0.5), v = static_cast<int>(y + 0.5);
-          const bool hit = image.ptr<std::uint8_t>(v)[u] == colour;
-          if (hit) {
-            ++run;
-          } else if (in_colour && run >= 2) {
-            edge_t = t - 0.5 * kStepPx;  // between the last colour sample and this one
-          }
-          if (!hit) run = 0;
-          in_colour = hit;
-        }
-        // Colour up to the border: the rim is outside the image; any edge before it is inner.
-        if (cut_by_border || in_colour || edge_t < 0.0) continue;
+        const double edge_t = colour_edge_t(image, sil.centre_px, Eigen::Vector2d(c, sn), 0.3 * rho,
+                                            1.6 * rho + 2.0, colour);
+        if (edge_t < 0.0) continue;
         EdgePoint& e = edges.points[edges.count++];
         e.uv_px = sil.centre_px + edge_t * Eigen::Vector2d(c, sn);
         e.view = static_cast<std::uint8_t>(view);
