@@ -90,8 +90,12 @@ bool PoseRefiner::refine(const BlobSet& blobs, Eigen::Isometry3d& T_cl_marker, d
     return true;
   };
   double lambda = 1e-3;
+  // A rejected step leaves T where it was, and with it J: near the minimum most of the 15
+  // iterations are rejections raising lambda, so J is taken again only where T moved.
+  bool j_at_T = false;
   for (int iter = 0; iter < 15; ++iter) {
-    if (!jacobian()) return false;
+    if (!j_at_T && !jacobian()) return false;
+    j_at_T = true;
     Eigen::Matrix<double, 6, 6> A = J.transpose() * J;
     const Eigen::Matrix<double, 6, 1> g = J.transpose() * r0;
     A.diagonal() *= 1.0 + lambda;
@@ -103,6 +107,7 @@ bool PoseRefiner::refine(const BlobSet& blobs, Eigen::Isometry3d& T_cl_marker, d
     if (residuals(blobs, candidate, r1) && r1.squaredNorm() < r0.squaredNorm()) {
       T = candidate;
       r0 = r1;
+      j_at_T = false;
       lambda = std::max(1e-6, lambda * 0.3);
       if (step.norm() < 1e-8) break;
     } else {
@@ -116,7 +121,7 @@ bool PoseRefiner::refine(const BlobSet& blobs, Eigen::Isometry3d& T_cl_marker, d
     report->rms_px = rms;
     // Per coordinate: rms / sqrt(2); never below the centroids' own noise (a quarter pixel).
     const double sigma_px = std::max(rms / std::sqrt(2.0), kCentroidNoisePx);
-    if (jacobian()) {
+    if (j_at_T || jacobian()) {
       const Eigen::Matrix<double, 6, 6> A = J.transpose() * J;
       report->covariance =
           sigma_px * sigma_px * A.ldlt().solve(Eigen::Matrix<double, 6, 6>::Identity());
