@@ -79,7 +79,9 @@ void BlobSeeder::find(int view, const cv::Mat& labels) {
     // (highlights) filled, as spheres project to convex ellipses.
     const int x0 = cx0 * kCell, x1 = std::min(w, (cx1 + 1) * kCell) - 1;
     const int y0 = cy0 * kCell, y1 = std::min(h, (cy1 + 1) * kCell) - 1;
-    double area = 0.0, su = 0.0, sv = 0.0;
+    double area = 0.0, su = 0.0, sv = 0.0, suu = 0.0, suv = 0.0, svv = 0.0;
+    // Sum of k^2 for k = 0..n.
+    auto squares = [](double n) { return n * (n + 1.0) * (2.0 * n + 1.0) / 6.0; };
     int u_min = w, u_max = -1, v_min = h, v_max = -1;
     for (int v = y0; v <= y1; ++v) {
       const std::uint8_t* row = labels.ptr<std::uint8_t>(v);
@@ -90,8 +92,12 @@ void BlobSeeder::find(int view, const cv::Mat& labels) {
       while (row[r] != c) --r;
       const double n = r - l + 1;
       area += n;
-      su += n * 0.5 * (l + r);
+      const double row_u = n * 0.5 * (l + r);
+      su += row_u;
       sv += n * v;
+      suu += squares(r) - squares(l - 1.0);
+      suv += row_u * v;
+      svv += n * static_cast<double>(v) * v;
       u_min = std::min(u_min, l);
       u_max = std::max(u_max, r);
       v_min = std::min(v_min, v);
@@ -102,6 +108,16 @@ void BlobSeeder::find(int view, const cv::Mat& labels) {
     blob.area_px = area;
     blob.u_px = su / area;
     blob.v_px = sv / area;
+    const double cuu = suu / area - blob.u_px * blob.u_px;
+    const double cvv = svv / area - blob.v_px * blob.v_px;
+    const double cuv = suv / area - blob.u_px * blob.v_px;
+    const double half_gap = std::sqrt(0.25 * (cuu - cvv) * (cuu - cvv) + cuv * cuv);
+    const double across = std::max(0.0, 0.5 * (cuu + cvv) - half_gap);
+    const double smear = std::sqrt(12.0 * 2.0 * half_gap);
+    const double angle = 0.5 * std::atan2(2.0 * cuv, cuu - cvv);
+    blob.width_px = 4.0 * std::sqrt(across);
+    blob.smear_u_px = smear * std::cos(angle);
+    blob.smear_v_px = smear * std::sin(angle);
     blob.touches_border =
         u_min <= 0 || v_min <= 0 || u_max >= labels.cols - 1 || v_max >= labels.rows - 1;
   }

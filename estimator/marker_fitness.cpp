@@ -52,8 +52,18 @@ void MarkerFitness::set_labels(const cv::Mat& left, const cv::Mat& right) {
   }
 }
 
+void MarkerFitness::set_smear(int view, const SharedSmear& smear) {
+  if (view >= 0 && view < 2) views_[view].smear = smear;
+}
+
+bool MarkerFitness::sweeps(const SharedSmear& smear, float diameter_px) {
+  return smear.min_length_px >= kSmearMinLength * diameter_px &&
+         smear.min_width_px >= kSmearMinWidth * diameter_px &&
+         smear.max_width_px <= kSmearMaxWidth * diameter_px;
+}
+
 double MarkerFitness::score_view(const View& view, const Eigen::Vector3d& c, const Sphere& s,
-                                 double* ring_hits) const {
+                                 double* ring_hits, bool swept) const {
   const double r = s.radius_m;
   const double d2 = c.squaredNorm();
   if (c.z() <= r * 1.01 || d2 <= r * r * 1.0201) return 0.0;
@@ -86,46 +96,97 @@ double MarkerFitness::score_view(const View& view, const Eigen::Vector3d& c, con
     ++in_image;
     return labels[static_cast<std::size_t>(iv) * stride + iu] == colour;
   };
+  // in_image holds the ring's samples inside the image when this is called.
+  auto finish = [&](int inside, int inner_in_image, int outside) -> double {
+    const int inner_total = static_cast<int>(inner_xy_.size() / 2);
+    if (border_occluder_ && inner_in_image < inner_total && 4 * inner_in_image >= inner_total &&
+        in_image > 0) {
+      // Both rings scored on their samples inside the image only.
+      if (ring_hits != nullptr) *ring_hits = static_cast<double>(outside) / in_image;
+      return static_cast<double>(inside) / inner_in_image - static_cast<double>(outside) / in_image;
+    }
+    if (ring_hits != nullptr) *ring_hits = outside * inv_outer_;
+    return inside * inv_inner_ - outside * inv_outer_;
+  };
   int inside = 0, outside = 0;
+  const SharedSmear& smear = view.smear;
+  if (swept && smear.valid && sweeps(smear, 2.0f * std::sqrt(std::abs(a00 * a11 - a01 * a10)))) {
+    // Inner samples spread over the smear (five stations along it), the ring's halves moved to
+    // its two ends: the stadium a disc sweeps.
+    const float bu = static_cast<float>(smear.u_px), bv = static_cast<float>(smear.v_px);
+    auto hit_at = [&](float du, float dv) -> int {
+      const float pu = cu + du, pv = cv + dv;
+      if (!(pu >= 0.0f && pv >= 0.0f)) return 0;
+      const unsigned iu = static_cast<unsigned>(pu), iv = static_cast<unsigned>(pv);
+      if (iu >= w || iv >= hgt) return 0;
+      ++in_image;
+      return labels[static_cast<std::size_t>(iv) * stride + iu] == colour;
+    };
+    const float* p = inner_xy_.data();
+    for (std::size_t i = 0; i < inner_xy_.size(); i += 2) {
+      const float t = kSmearReach * (0.5f * static_cast<float>((i / 2) % 5) - 1.0f);
+      const float ox = kSmearCore * p[i], oy = kSmearCore * p[i + 1];
+      inside += hit_at(a00 * ox + a01 * oy + t * bu, a10 * ox + a11 * oy + t * bv);
+    }
+    const int inner_in_image = in_image;
+    in_image = 0;
+    p = outer_xy_.data();
+    for (std::size_t i = 0; i < outer_xy_.size(); i += 2) {
+      const float du = a00 * p[i] + a01 * p[i + 1], dv = a10 * p[i] + a11 * p[i + 1];
+      const float t = du * bu + dv * bv >= 0.0f ? 0.5f : -0.5f;
+      outside += hit_at(du + t * bu, dv + t * bv);
+    }
+    return finish(inside, inner_in_image, outside);
+  }
   const float* p = inner_xy_.data();
   for (std::size_t i = 0; i < inner_xy_.size(); i += 2) inside += hit(p[i], p[i + 1]);
   const int inner_in_image = in_image;
   in_image = 0;
   p = outer_xy_.data();
   for (std::size_t i = 0; i < outer_xy_.size(); i += 2) outside += hit(p[i], p[i + 1]);
-  const int inner_total = static_cast<int>(inner_xy_.size() / 2);
-  if (border_occluder_ && inner_in_image < inner_total && 4 * inner_in_image >= inner_total &&
-      in_image > 0) {
-    // Both rings scored on their samples inside the image only.
-    if (ring_hits != nullptr) *ring_hits = static_cast<double>(outside) / in_image;
-    return static_cast<double>(inside) / inner_in_image - static_cast<double>(outside) / in_image;
-  }
-  if (ring_hits != nullptr) *ring_hits = outside * inv_outer_;
-  return inside * inv_inner_ - outside * inv_outer_;
+  return finish(inside, inner_in_image, outside);
 }
 
 void MarkerFitness::sphere_scores(const Eigen::Isometry3d& T_cl_marker, SphereScores& scores,
                                   SphereScores* ring_hits) const {
+  scores_at(T_cl_marker, scores, ring_hits, true);
+}
+
+void MarkerFitness::disc_sphere_scores(const Eigen::Isometry3d& T_cl_marker, SphereScores& scores,
+                                       SphereScores* ring_hits) const {
+  scores_at(T_cl_marker, scores, ring_hits, false);
+}
+
+void MarkerFitness::scores_at(const Eigen::Isometry3d& T_cl_marker, SphereScores& scores,
+                              SphereScores* ring_hits, bool swept) const {
   scores = {};
   SphereScores ring{};
   if (views_[0].labels != nullptr) {
     for (std::size_t i = 0; i < spheres_.size() && i < 3; ++i) {
       const Eigen::Vector3d c_cl = T_cl_marker * spheres_[i].centre_marker_m;
-      scores[0][i] = score_view(views_[0], c_cl, spheres_[i], &ring[0][i]);
+      scores[0][i] = score_view(views_[0], c_cl, spheres_[i], &ring[0][i], swept);
       scores[1][i] = score_view(views_[1], views_[1].R_v_cl * c_cl + views_[1].t_v_cl, spheres_[i],
-                                &ring[1][i]);
+                                &ring[1][i], swept);
     }
   }
   if (ring_hits != nullptr) *ring_hits = ring;
 }
 
 double MarkerFitness::evaluate(const Eigen::Isometry3d& T_cl_marker) const {
+  return evaluate_as(T_cl_marker, false);
+}
+
+double MarkerFitness::evaluate_swept(const Eigen::Isometry3d& T_cl_marker) const {
+  return evaluate_as(T_cl_marker, true);
+}
+
+double MarkerFitness::evaluate_as(const Eigen::Isometry3d& T_cl_marker, bool swept) const {
   if (views_[0].labels == nullptr) return 0.0;
   double sum = 0.0;
   for (const Sphere& s : spheres_) {
     const Eigen::Vector3d c_cl = T_cl_marker * s.centre_marker_m;
-    sum += score_view(views_[0], c_cl, s);
-    sum += score_view(views_[1], views_[1].R_v_cl * c_cl + views_[1].t_v_cl, s);
+    sum += score_view(views_[0], c_cl, s, nullptr, swept);
+    sum += score_view(views_[1], views_[1].R_v_cl * c_cl + views_[1].t_v_cl, s, nullptr, swept);
   }
   const double f = sum / (2.0 * static_cast<double>(spheres_.size()));
   return std::isfinite(f) ? std::clamp(f, 0.0, 1.0) : 0.0;

@@ -9,6 +9,7 @@
 #include <stdexcept>
 
 #include "estimator/error_bound.hpp"
+#include "estimator/motion_smear.hpp"
 #include "estimator/tilt_ambiguity.hpp"
 #include "hal/model/pose.hpp"
 
@@ -141,7 +142,7 @@ PoseEstimate PoseEstimator::estimate_all_looks() {
 void PoseEstimator::widen_to_mirror(const Eigen::Isometry3d& T, const Eigen::Isometry3d& T_mirror,
                                     PoseEstimate& estimate) {
   ++extra_evaluations_;
-  if (fitness_.evaluate(T_mirror) < params_.recognition_threshold) return;
+  if (fitness_.evaluate_swept(T_mirror) < params_.recognition_threshold) return;
   const double apart_deg = hal::rotation_angle_rad(T.linear(), T_mirror.linear()) * 180.0 / M_PI;
   const double apart_m = (T.translation() - T_mirror.translation()).norm();
   if (apart_deg <= estimate.error_bound_deg && apart_m <= estimate.error_bound_m) return;
@@ -171,13 +172,22 @@ PoseEstimate PoseEstimator::estimate_on_labels(Look look) {
     return none;
   }
   const bool improved = params_.improved();
-  ga_.evaluate_all();
-
   const bool use_blobs = improved && (params_.blob_seeding || params_.refine_elite);
   if (use_blobs) {
     blobs_.find(0, labels_[0]);
     blobs_.find(1, labels_[1]);
+    // The fitness sweeps a smeared sphere along the view's smear (motion blur); a blob the
+    // border cuts measures none.
+    for (int v = 0; v < 2; ++v) {
+      std::array<BlobSmear, hal::kColourClassCount> smears{};
+      for (int c = 1; c < hal::kColourClassCount; ++c) {
+        const Blob& b = blobs_.blobs()[v][c];
+        if (b.valid && !b.touches_border) smears[c] = {b.smear_u_px, b.smear_v_px, b.width_px};
+      }
+      fitness_.set_smear(v, shared_smear(smears));
+    }
   }
+  ga_.evaluate_all();
   if (improved && params_.blob_seeding) {
     Eigen::Isometry3d T_seed;
     if (blobs_.seed(T_seed)) {
@@ -203,9 +213,10 @@ PoseEstimate PoseEstimator::estimate_on_labels(Look look) {
 
   estimate.T_cl_marker = codec_.decode(ga_.best().gene);
   estimate.fitness = ga_.best().fitness;
-  if (fitness_.far_field()) {
-    // The GA ranked by the search score; the estimate reports the paper's fitness.
-    estimate.fitness = fitness_.evaluate(estimate.T_cl_marker);
+  if (fitness_.far_field() || fitness_.smeared()) {
+    // The GA ranked by the search score, or by the disc where the swept model judges: the
+    // estimate reports the paper's fitness, swept where the view is smeared.
+    estimate.fitness = fitness_.evaluate_swept(estimate.T_cl_marker);
     ++extra_evaluations_;
   }
   if (improved && params_.refine_elite) {
@@ -214,7 +225,7 @@ PoseEstimate PoseEstimator::estimate_on_labels(Look look) {
     Eigen::Isometry3d T = estimate.T_cl_marker;
     RefineReport report;
     if (refiner_.refine(blobs_.blobs(), T, 1.5, &report)) {
-      const double f = fitness_.evaluate(T);
+      const double f = fitness_.evaluate_swept(T);
       ++extra_evaluations_;
       if (f >= estimate.fitness - 0.05) {
         estimate.T_cl_marker = T;
@@ -252,12 +263,12 @@ PoseEstimate PoseEstimator::estimate_on_labels(Look look) {
       // Trusted only when every sphere's rim is confirmed in both views over enough of its
       // length: a blurred or faded edge is no rim, and then the centroids' pose stands.
       const double weakest = weakest_support(fit);
-      const double f = fitness_.evaluate(T);
+      const double f = fitness_.evaluate_swept(T);
       ++extra_evaluations_;
       // A sphere whose colour spills onto its ring around the fitted rims is smeared: its rims
       // lean the pose along the smear even when they fit well enough to pass the rms.
       MarkerFitness::SphereScores at_rims, ring_at_rims;
-      fitness_.sphere_scores(T, at_rims, &ring_at_rims);
+      fitness_.disc_sphere_scores(T, at_rims, &ring_at_rims);
       double spill = 0.0;
       for (const auto& view : ring_at_rims) {
         for (double r : view) spill = std::max(spill, r);
