@@ -32,6 +32,20 @@ const char* image_error(const cv::Mat& image, const hal::CameraModel& camera) {
 
 }  // namespace
 
+const char* to_string(NotOkReason reason) {
+  switch (reason) {
+    case NotOkReason::none:
+      return "none";
+    case NotOkReason::partial_view:
+      return "partial_view";
+    case NotOkReason::not_refined:
+      return "not_refined";
+    case NotOkReason::bound_over_limit:
+      return "bound_over_limit";
+  }
+  return "unknown";
+}
+
 PoseEstimator::PoseEstimator(const hal::StereoRig& rig, const hal::MarkerModel& marker,
                              const EstimatorParams& params, std::uint64_t seed)
     : rig_(rig),
@@ -327,9 +341,19 @@ PoseEstimate PoseEstimator::estimate_on_labels(Look look) {
   const bool refined = estimate.refined || estimate.rim_refined;
   const bool bounded = estimate.error_bound_m * 1000.0 <= params_.ok_bound_mm &&
                        estimate.error_bound_deg <= params_.ok_bound_deg;
-  estimate.ok = estimate.recognised && estimate.spheres_seen[0] == spheres &&
-                estimate.spheres_seen[1] == spheres &&
-                (!improved || !params_.refine_elite || (refined && bounded));
+  const bool fit_needed = improved && params_.refine_elite;
+  if (!estimate.recognised) {
+    estimate.not_ok_reason = NotOkReason::none;
+  } else if (estimate.spheres_seen[0] != spheres || estimate.spheres_seen[1] != spheres) {
+    estimate.not_ok_reason = NotOkReason::partial_view;
+  } else if (fit_needed && !refined) {
+    estimate.not_ok_reason = NotOkReason::not_refined;
+  } else if (fit_needed && !bounded) {
+    estimate.not_ok_reason = NotOkReason::bound_over_limit;
+  } else {
+    estimate.not_ok_reason = NotOkReason::none;
+  }
+  estimate.ok = estimate.recognised && estimate.not_ok_reason == NotOkReason::none;
   estimate.compute_time = Clock::now() - start;
   return estimate;
 }

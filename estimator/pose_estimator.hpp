@@ -24,6 +24,15 @@
 
 namespace rovctl::estimator {
 
+// Why a recognised estimate is not ok: the first of these that holds.
+enum class NotOkReason : std::uint8_t {
+  none,              // ok, or not recognised at all
+  partial_view,      // a sphere not seen in one view or both (spheres_seen)
+  not_refined,       // improved mode: no refinement accepted, so no error bound
+  bound_over_limit,  // improved mode: the fit's error bound over ok_bound_mm or ok_bound_deg
+};
+const char* to_string(NotOkReason reason);
+
 struct PoseEstimate {
   bool recognised = false;  // fitness >= recognition threshold (paper: 0.6)
   // Null, or why there is no estimate this frame (a static string: e.g. an image whose size
@@ -64,6 +73,7 @@ struct PoseEstimate {
   // EstimatorParams::ga_restart_frames frames having had no refinement accepted.
   bool ga_restarted = false;
   bool ok = false;
+  NotOkReason not_ok_reason = NotOkReason::none;
   int generations = 0;  // generations run this frame
   std::chrono::nanoseconds compute_time{0};
 };

@@ -6,6 +6,7 @@
 #include <iostream>
 #include <opencv2/imgcodecs.hpp>
 #include <stdexcept>
+#include <string>
 
 #include "app/cli/cli_args.hpp"
 #include "app/cli/commands.hpp"
@@ -42,6 +43,47 @@ cv::Mat read_image(const std::string& path, const hal::CameraModel& camera,
                       std::to_string(camera.height_px));
   }
   return image;
+}
+
+const char* not_ok_label(estimator::NotOkReason reason) {
+  switch (reason) {
+    case estimator::NotOkReason::partial_view:
+      return "PARTIAL view";
+    case estimator::NotOkReason::not_refined:
+      return "NOT refined";
+    case estimator::NotOkReason::bound_over_limit:
+      return "BOUND over limit";
+    case estimator::NotOkReason::none:
+      break;
+  }
+  return "not ok";
+}
+
+// The test the estimate failed, with the figures and the config keys it was judged by.
+std::string not_ok_message(const estimator::PoseEstimate& e, const AppConfig& config) {
+  const estimator::EstimatorParams& p = config.estimator;
+  char text[320];
+  switch (e.not_ok_reason) {
+    case estimator::NotOkReason::partial_view:
+      std::snprintf(text, sizeof text, "partial view (spheres seen: %d left, %d right, of %zu)",
+                    e.spheres_seen[0], e.spheres_seen[1], config.marker.spheres.size());
+      break;
+    case estimator::NotOkReason::not_refined:
+      std::snprintf(text, sizeof text,
+                    "every sphere seen, but no refinement accepted (on the centroids or the rims), "
+                    "so the pose has no error bound");
+      break;
+    case estimator::NotOkReason::bound_over_limit:
+      std::snprintf(text, sizeof text,
+                    "every sphere seen, but the error bound %.1f mm / %.1f deg is over "
+                    "estimator.ok_bound_mm / ok_bound_deg (%g mm / %g deg)",
+                    e.error_bound_m * 1000.0, e.error_bound_deg, p.ok_bound_mm, p.ok_bound_deg);
+      break;
+    case estimator::NotOkReason::none:
+      std::snprintf(text, sizeof text, "fitness %.3f", e.fitness);
+      break;
+  }
+  return text;
 }
 
 }  // namespace
@@ -83,6 +125,7 @@ int command_estimate(const Words& words) {
     json.begin_object()
         .field("ok", estimate.ok)
         .field("recognised", estimate.recognised)
+        .field("not_ok_reason", std::string_view(estimator::to_string(estimate.not_ok_reason)))
         .begin_array("spheres_seen")
         .value(static_cast<double>(estimate.spheres_seen[0]))
         .value(static_cast<double>(estimate.spheres_seen[1]))
@@ -136,7 +179,9 @@ int command_estimate(const Words& words) {
                   "fitness %.3f (%s), spheres seen %d left %d right, %ld frames, %ld generations, "
                   "%.2f ms estimator time\n",
                   estimate.fitness,
-                  estimate.ok ? "ok" : (estimate.recognised ? "PARTIAL view" : "NOT recognised"),
+                  estimate.ok            ? "ok"
+                  : !estimate.recognised ? "NOT recognised"
+                                         : not_ok_label(estimate.not_ok_reason),
                   estimate.spheres_seen[0], estimate.spheres_seen[1], frames, generations, time_ms);
     std::cout << line;
   }
@@ -146,9 +191,8 @@ int command_estimate(const Words& words) {
     return kExitRuntimeFailure;
   }
   if (!estimate.ok) {
-    // A partial view: good enough to steer toward, not to trust as the pose.
-    std::cerr << "rovctl estimate: partial view (spheres seen: " << estimate.spheres_seen[0]
-              << " left, " << estimate.spheres_seen[1] << " right): not ok\n";
+    // Good enough to steer toward, not to trust as the pose: say which test it failed.
+    std::cerr << "rovctl estimate: not ok: " << not_ok_message(estimate, config) << "\n";
     return kExitRuntimeFailure;
   }
   return kExitOk;

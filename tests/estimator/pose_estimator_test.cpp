@@ -10,6 +10,7 @@
 #include <utility>
 #include <vector>
 
+#include "hal/model/pose.hpp"
 #include "test_scene.hpp"
 
 namespace rovctl::estimator {
@@ -34,6 +35,51 @@ TEST(PoseEstimator, ImprovedModeFindsThePoseInTheFirstFrame) {
     EXPECT_LT(translation_error_mm(e.T_cl_marker, truth), 2.0) << trial;
     EXPECT_LT(rotation_error_deg(e.T_cl_marker, truth), 1.0) << trial;
   }
+}
+
+// `rovctl estimate` and the operator say why an estimate is not trusted: the first test it failed.
+TEST(PoseEstimator, AnEstimateNotOkSaysWhichTestItFailed) {
+  TestScene scene;
+  const Eigen::Isometry3d truth = hal::make_pose(
+      {0.03, -0.02, 0.6},
+      Eigen::Quaterniond(Eigen::AngleAxisd(0.2, Eigen::Vector3d(1, 2, 0).normalized())));
+  scene.render(truth, 5);
+  {
+    PoseEstimator est(scene.rig, scene.marker, EstimatorParams{}, 5);
+    const PoseEstimate e = est.update(scene.left_bgr, scene.right_bgr);
+    ASSERT_TRUE(e.ok);
+    EXPECT_EQ(e.not_ok_reason, NotOkReason::none);
+  }
+  {
+    // Every sphere seen and refined, the bound over a limit tighter than any fit.
+    EstimatorParams tight;
+    tight.ok_bound_deg = 0.01;
+    PoseEstimator est(scene.rig, scene.marker, tight, 5);
+    const PoseEstimate e = est.update(scene.left_bgr, scene.right_bgr);
+    EXPECT_FALSE(e.ok);
+    EXPECT_TRUE(e.refined || e.rim_refined);
+    EXPECT_EQ(e.spheres_seen[0], 3);
+    EXPECT_EQ(e.not_ok_reason, NotOkReason::bound_over_limit);
+    EXPECT_STREQ(to_string(e.not_ok_reason), "bound_over_limit");
+  }
+  {
+    // The red sphere painted out of the left image: seen in one view only.
+    Eigen::Vector2d uv;
+    ASSERT_TRUE(scene.rig.left.project(truth * scene.marker.spheres[0].centre_marker_m, uv));
+    cv::circle(scene.left_bgr, cv::Point(static_cast<int>(uv.x()), static_cast<int>(uv.y())), 40,
+               cv::Scalar(90, 70, 40), cv::FILLED);
+    PoseEstimator est(scene.rig, scene.marker, EstimatorParams{}, 5);
+    const PoseEstimate e = est.update(scene.left_bgr, scene.right_bgr);
+    EXPECT_TRUE(e.recognised);
+    EXPECT_FALSE(e.ok);
+    EXPECT_EQ(e.spheres_seen[0], 2);
+    EXPECT_EQ(e.not_ok_reason, NotOkReason::partial_view);
+  }
+  // Nothing to see: not recognised, which is its own answer.
+  PoseEstimator est(scene.rig, scene.marker, EstimatorParams{}, 5);
+  const PoseEstimate e = est.update(scene.empty_image(), scene.empty_image());
+  EXPECT_FALSE(e.recognised);
+  EXPECT_EQ(e.not_ok_reason, NotOkReason::none);
 }
 
 TEST(PoseEstimator, FaithfulModeClimbsAndIsReproducible) {

@@ -86,6 +86,26 @@ TEST(CommandEstimate, FindsThePoseInARenderedPair) {
   EXPECT_GT(numbers_after(out, "time_ms").at(0), 0.0);
 }
 
+TEST(CommandEstimate, AnEstimateNotOkSaysWhichTestItFailedAndByWhichKey) {
+  const Files f;
+  // Every sphere seen and the pose right, but the rotation bound held to 0.01 deg.
+  const std::string config = f.write(
+      "tight.yaml", "calibration: " + kCalibration + "\nestimator:\n  ok_bound_deg: 0.01\n");
+  ::testing::internal::CaptureStdout();
+  ::testing::internal::CaptureStderr();
+  const int rc = command_estimate(
+      {"--config", config, "--left", f.left, "--right", f.right, "--seed", "3", "--json"});
+  const std::string out = ::testing::internal::GetCapturedStdout();
+  const std::string err = ::testing::internal::GetCapturedStderr();
+  EXPECT_EQ(rc, kExitRuntimeFailure) << out;
+  EXPECT_NE(out.find("\"ok\": false"), std::string::npos) << out;
+  EXPECT_NE(out.find("\"not_ok_reason\": \"bound_over_limit\""), std::string::npos) << out;
+  EXPECT_NE(err.find("error bound"), std::string::npos) << err;
+  EXPECT_NE(err.find("estimator.ok_bound_mm / ok_bound_deg (10 mm / 0.01 deg)"), std::string::npos)
+      << err;
+  EXPECT_EQ(err.find("partial view"), std::string::npos) << err;
+}
+
 template <class Error>
 std::string error_of(const Words& words) {
   ::testing::internal::CaptureStdout();
