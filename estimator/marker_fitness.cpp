@@ -87,14 +87,17 @@ double MarkerFitness::score_view(const View& view, const Eigen::Vector3d& c, con
   const int stride = view.stride;
   const std::uint8_t colour = s.colour;
   int in_image = 0;  // of the samples
-  auto hit = [&](float ox, float oy) -> int {
-    const float pu = cu + a00 * ox + a01 * oy;
-    const float pv = cv + a10 * ox + a11 * oy;
+  // A sample at pixel (pu, pv), +0.5 included: on the sphere's colour, counted if in the image.
+  auto hit_px = [&](float pu, float pv) -> int {
     if (!(pu >= 0.0f && pv >= 0.0f)) return 0;
     const unsigned iu = static_cast<unsigned>(pu), iv = static_cast<unsigned>(pv);
     if (iu >= w || iv >= hgt) return 0;
     ++in_image;
     return labels[static_cast<std::size_t>(iv) * stride + iu] == colour;
+  };
+  // A sample at (ox, oy) on the unit disc about the sphere's image.
+  auto hit = [&](float ox, float oy) -> int {
+    return hit_px(cu + a00 * ox + a01 * oy, cv + a10 * ox + a11 * oy);
   };
   // in_image holds the ring's samples inside the image when this is called.
   auto finish = [&](int inside, int inner_in_image, int outside) -> double {
@@ -114,19 +117,11 @@ double MarkerFitness::score_view(const View& view, const Eigen::Vector3d& c, con
     // Inner samples spread over the smear (five stations along it), the ring's halves moved to
     // its two ends: the stadium a disc sweeps.
     const float bu = static_cast<float>(smear.u_px), bv = static_cast<float>(smear.v_px);
-    auto hit_at = [&](float du, float dv) -> int {
-      const float pu = cu + du, pv = cv + dv;
-      if (!(pu >= 0.0f && pv >= 0.0f)) return 0;
-      const unsigned iu = static_cast<unsigned>(pu), iv = static_cast<unsigned>(pv);
-      if (iu >= w || iv >= hgt) return 0;
-      ++in_image;
-      return labels[static_cast<std::size_t>(iv) * stride + iu] == colour;
-    };
     const float* p = inner_xy_.data();
     for (std::size_t i = 0; i < inner_xy_.size(); i += 2) {
       const float t = kSmearReach * (0.5f * static_cast<float>((i / 2) % 5) - 1.0f);
       const float ox = kSmearCore * p[i], oy = kSmearCore * p[i + 1];
-      inside += hit_at(a00 * ox + a01 * oy + t * bu, a10 * ox + a11 * oy + t * bv);
+      inside += hit_px(cu + (a00 * ox + a01 * oy + t * bu), cv + (a10 * ox + a11 * oy + t * bv));
     }
     const int inner_in_image = in_image;
     in_image = 0;
@@ -134,7 +129,7 @@ double MarkerFitness::score_view(const View& view, const Eigen::Vector3d& c, con
     for (std::size_t i = 0; i < outer_xy_.size(); i += 2) {
       const float du = a00 * p[i] + a01 * p[i + 1], dv = a10 * p[i] + a11 * p[i + 1];
       const float t = du * bu + dv * bv >= 0.0f ? 0.5f : -0.5f;
-      outside += hit_at(du + t * bu, dv + t * bv);
+      outside += hit_px(cu + (du + t * bu), cv + (dv + t * bv));
     }
     return finish(inside, inner_in_image, outside);
   }
