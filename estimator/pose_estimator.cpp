@@ -46,6 +46,17 @@ const char* to_string(NotOkReason reason) {
   return "unknown";
 }
 
+bool from_string(std::string_view text, NotOkReason& reason) {
+  for (const NotOkReason r : {NotOkReason::none, NotOkReason::partial_view,
+                              NotOkReason::not_refined, NotOkReason::bound_over_limit}) {
+    if (text == to_string(r)) {
+      reason = r;
+      return true;
+    }
+  }
+  return false;
+}
+
 PoseEstimator::PoseEstimator(const hal::StereoRig& rig, const hal::MarkerModel& marker,
                              const EstimatorParams& params, std::uint64_t seed)
     : rig_(rig),

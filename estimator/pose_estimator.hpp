@@ -10,6 +10,7 @@
 #include <limits>
 #include <opencv2/core/mat.hpp>
 #include <optional>
+#include <string_view>
 
 #include "estimator/blob_seeder.hpp"
 #include "estimator/estimator_params.hpp"
@@ -32,6 +33,8 @@ enum class NotOkReason : std::uint8_t {
   bound_over_limit,  // improved mode: the fit's error bound over ok_bound_mm or ok_bound_deg
 };
 const char* to_string(NotOkReason reason);
+// The inverse of to_string (a telemetry file read back); false for any other text.
+bool from_string(std::string_view text, NotOkReason& reason);
 
 struct PoseEstimate {
   bool recognised = false;  // fitness >= recognition threshold (paper: 0.6)

@@ -240,10 +240,11 @@ int bench_set(const AppConfig& config, const hal::StereoRig& rig, const std::str
     for (const PairResult& r : details) {
       std::fprintf(
           stderr,
-          "%-44s %s %7.1f mm %6.1f deg  fitness %.3f  seen %d/%d  scores L %.2f %.2f "
+          "%-44s %-16s %7.1f mm %6.1f deg  fitness %.3f  seen %d/%d  scores L %.2f %.2f "
           "%.2f R %.2f %.2f %.2f  ring L %.2f %.2f %.2f R %.2f %.2f %.2f  rim %s L %.2f %.2f %.2f "
           "R %.2f %.2f %.2f  bound %.1f mm %.1f deg%s\n",
-          r.pair->left_png.c_str(), r.ok ? "ok     " : (r.partial ? "partial" : "none   "),
+          r.pair->left_png.c_str(),
+          r.ok ? "ok" : (r.partial ? estimator::to_string(r.not_ok_reason) : "not_recognised"),
           r.translation_mm, r.rotation_deg, r.fitness, r.spheres_seen_left, r.spheres_seen_right,
           r.sphere_scores[0][0], r.sphere_scores[0][1], r.sphere_scores[0][2],
           r.sphere_scores[1][0], r.sphere_scores[1][1], r.sphere_scores[1][2],
@@ -274,6 +275,9 @@ int bench_set(const AppConfig& config, const hal::StereoRig& rig, const std::str
           .field("false_ok", s.false_ok)
           .field("false_ok_rate", s.pairs > 0 ? static_cast<double>(s.false_ok) / s.pairs : 0.0)
           .field("partial", s.partial)
+          .field("partial_view", s.partial_view)
+          .field("not_refined", s.not_refined)
+          .field("bound_over_limit", s.bound_over_limit)
           .field("translation_mm_median", s.translation_mm_median)
           .field("translation_mm_p95", s.translation_mm_p95)
           .field("rotation_deg_median", s.rotation_deg_median)
@@ -293,6 +297,9 @@ int bench_set(const AppConfig& config, const hal::StereoRig& rig, const std::str
           .field("success_rate", static_cast<double>(s.success) / s.pairs)
           .field("false_ok", s.false_ok)
           .field("partial", s.partial)
+          .field("partial_view", s.partial_view)
+          .field("not_refined", s.not_refined)
+          .field("bound_over_limit", s.bound_over_limit)
           .field("translation_mm_median", s.translation_mm_median)
           .field("rotation_deg_median", s.rotation_deg_median)
           .end_object();
@@ -305,14 +312,17 @@ int bench_set(const AppConfig& config, const hal::StereoRig& rig, const std::str
         "%.0f mm and %.0f deg\n",
         dir.c_str(), pairs.size(), frames, static_cast<unsigned long>(seed),
         config.estimator.mode.c_str(), kRightTranslationMm, kRightRotationDeg);
-    std::printf("%-14s %5s %8s %9s %8s %10s %10s %9s\n", "condition", "pairs", "success",
-                "false-ok", "partial", "mm med/p95", "deg med/p95", "ms p95");
+    std::printf("%-14s %5s %8s %9s %8s %14s %10s %10s %9s\n", "condition", "pairs", "success",
+                "false-ok", "partial", "view/ref/bound", "mm med/p95", "deg med/p95", "ms p95");
     for (const ConditionScore& s : scores) {
-      std::printf("%-14s %5d %7.0f%% %8.0f%% %8d %5.1f/%-5.1f %5.2f/%-5.2f %8.2f\n",
+      char split[24];
+      std::snprintf(split, sizeof split, "%d/%d/%d", s.partial_view, s.not_refined,
+                    s.bound_over_limit);
+      std::printf("%-14s %5d %7.0f%% %8.0f%% %8d %14s %5.1f/%-5.1f %5.2f/%-5.2f %8.2f\n",
                   s.condition.c_str(), s.pairs, 100.0 * s.success / std::max(1, s.pairs),
-                  100.0 * s.false_ok / std::max(1, s.pairs), s.partial, s.translation_mm_median,
-                  s.translation_mm_p95, s.rotation_deg_median, s.rotation_deg_p95,
-                  s.ms_per_frame_p95);
+                  100.0 * s.false_ok / std::max(1, s.pairs), s.partial, split,
+                  s.translation_mm_median, s.translation_mm_p95, s.rotation_deg_median,
+                  s.rotation_deg_p95, s.ms_per_frame_p95);
     }
     std::printf("\nby the marker's true range from the left camera:\n%-14s %11s %5s %8s %9s\n",
                 "condition", "range m", "pairs", "success", "false-ok");

@@ -63,6 +63,9 @@ struct TelemetryRecord {
   double fitness = kNaN;
   std::int32_t spheres_seen_left = 0, spheres_seen_right = 0;
   double error_bound_m = kNaN;  // translation error bound of the estimate, when refined
+  // Why a recognised estimate is not trusted (estimator::NotOkReason as int; 0, none, when ok or
+  // not recognised). Written as its token, so the CSV says "bound_over_limit", not a number.
+  std::int32_t not_ok_reason = 0;
   std::array<double, 3> est_t_m{kNaN, kNaN, kNaN};
   std::array<double, 4> est_q_wxyz{kNaN, kNaN, kNaN, kNaN};
   std::array<double, 3> truth_t_m{kNaN, kNaN, kNaN};

@@ -410,6 +410,7 @@ bool VehicleLoop::tick(const TickInfo& info) {
         rec.spheres_seen_left = estimate_.spheres_seen[0];
         rec.spheres_seen_right = estimate_.spheres_seen[1];
         rec.error_bound_m = estimate_.error_bound_m;
+        rec.not_ok_reason = static_cast<std::int32_t>(estimate_.not_ok_reason);
         if (estimate_.ok) flags |= telemetry_flag::full_view;
         put_pose(estimate_.T_cl_marker, rec.est_t_m, rec.est_q_wxyz);
         flags |= telemetry_flag::estimate_valid;

@@ -8,6 +8,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "estimator/pose_estimator.hpp"
+
 namespace rovctl::app {
 namespace {
 
@@ -46,6 +48,8 @@ std::vector<TelemetryRecord> read_telemetry_csv(const std::string& path) {
                     c_ax = index("dock_axial_m"), c_yaw = index("dock_yaw_rad"),
                     c_count = index("thruster_count"), c_cmd0 = index("cmd0"),
                     c_bus = index("bus_status"), c_flags = index("flags");
+  // Recordings made before the column existed read as "none": they said only ok or not.
+  const auto reason_column = column.find("not_ok_reason");
   std::vector<TelemetryRecord> records;
   int line_no = 1;
   while (std::getline(in, line)) {
@@ -76,6 +80,17 @@ std::vector<TelemetryRecord> read_telemetry_csv(const std::string& path) {
     r.spheres_seen_left = static_cast<std::int32_t>(number(c_sl));
     r.spheres_seen_right = static_cast<std::int32_t>(number(c_sr));
     r.error_bound_m = number(c_bound);
+    if (reason_column != column.end()) {
+      const std::string& token = cells[reason_column->second];
+      estimator::NotOkReason reason = estimator::NotOkReason::none;
+      if (!estimator::from_string(token, reason)) {
+        throw std::runtime_error(path + ":" + std::to_string(line_no) +
+                                 ": column 'not_ok_reason' is not none, partial_view, not_refined "
+                                 "or bound_over_limit: '" +
+                                 token + "'");
+      }
+      r.not_ok_reason = static_cast<std::int32_t>(reason);
+    }
     for (std::size_t i = 0; i < 3; ++i) r.est_t_m[i] = number(c_x + i);
     for (std::size_t i = 0; i < 4; ++i) r.est_q_wxyz[i] = number(c_qw + i);
     r.dock_lateral_error_m = number(c_lat);

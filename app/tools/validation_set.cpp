@@ -54,6 +54,19 @@ ConditionScore summarise(const std::string& condition, const std::vector<PairRes
     ++s.pairs;
     t_all.push_back(r.translation_mm);
     if (r.partial) ++s.partial;
+    switch (r.not_ok_reason) {
+      case estimator::NotOkReason::partial_view:
+        ++s.partial_view;
+        break;
+      case estimator::NotOkReason::not_refined:
+        ++s.not_refined;
+        break;
+      case estimator::NotOkReason::bound_over_limit:
+        ++s.bound_over_limit;
+        break;
+      case estimator::NotOkReason::none:
+        break;
+    }
     if (!r.ok) continue;
     ++s.ok;
     t_ok.push_back(r.translation_mm);
@@ -169,6 +182,7 @@ std::vector<ConditionScore> score_validation_set(const hal::StereoRig& rig,
     r.range_m = pair.T_cl_marker.translation().norm();
     r.ok = e.ok;
     r.partial = !e.ok && e.recognised;
+    r.not_ok_reason = e.not_ok_reason;
     r.fitness = e.fitness;
     r.spheres_seen_left = e.spheres_seen[0];
     r.spheres_seen_right = e.spheres_seen[1];

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "estimator/estimator_params.hpp"
+#include "estimator/pose_estimator.hpp"
 #include "hal/model/marker_model.hpp"
 #include "hal/model/stereo_rig.hpp"
 
@@ -42,7 +43,8 @@ struct ConditionScore {
   int ok = 0;        // the estimator said ok
   int success = 0;   // said ok and was right
   int false_ok = 0;  // said ok and was wrong: the failure that matters
-  int partial = 0;   // reported a partial view (approach only), not ok
+  int partial = 0;   // recognised but not ok (approach only): the three below together
+  int partial_view = 0, not_refined = 0, bound_over_limit = 0;  // by the first test it failed
   // Over the pairs reported ok (what the vehicle would act on); NaN when none.
   double translation_mm_median = 0.0, translation_mm_p95 = 0.0;
   double rotation_deg_median = 0.0, rotation_deg_p95 = 0.0;
@@ -55,7 +57,8 @@ struct PairResult {
   const ValidationPair* pair = nullptr;
   double range_m = 0.0;  // the truth's, from the left camera
   bool ok = false;
-  bool partial = false;
+  bool partial = false;  // recognised but not ok
+  estimator::NotOkReason not_ok_reason = estimator::NotOkReason::none;
   double translation_mm = 0.0, rotation_deg = 0.0;
   double fitness = 0.0;
   int spheres_seen_left = 0, spheres_seen_right = 0;

@@ -22,7 +22,7 @@ constexpr std::string_view kPage = R"HTML(<!DOCTYPE html>
   .banner { display: none; padding: 3px 10px; border-radius: 4px; font-weight: 700; }
   .banner.on { display: inline-block; }
   #b-failsafe { background: #c62828; } #b-hold { background: #ef6c00; }
-  #b-partial { background: #6a5d00; } #b-link { background: #c62828; } #b-replay { background: #37474f; }
+  #b-not-ok { background: #6a5d00; } #b-link { background: #c62828; } #b-replay { background: #37474f; }
   main { display: grid; grid-template-columns: minmax(0, 3fr) minmax(260px, 1fr); gap: 10px; padding: 10px; }
   #cams { width: 100%; background: #000; border-radius: 4px; min-height: 120px; display: block; }
   .camlabels { display: flex; color: #8aa0b4; font-size: 12px; }
@@ -47,7 +47,7 @@ constexpr std::string_view kPage = R"HTML(<!DOCTYPE html>
   <span id="state">&mdash;</span>
   <span class="banner" id="b-failsafe">FAILSAFE</span>
   <span class="banner" id="b-hold">OPERATOR HOLD</span>
-  <span class="banner" id="b-partial">PARTIAL VIEW</span>
+  <span class="banner" id="b-not-ok">NOT OK</span>
   <span class="banner" id="b-link">NO DATA</span>
   <span class="banner" id="b-replay">REPLAY</span>
   <span style="margin-left:auto" id="clock"></span>
@@ -92,7 +92,7 @@ const $ = (id) => document.getElementById(id);
 const params = new URLSearchParams(location.search);
 $("token").value = params.get("token") || sessionStorage.getItem("rovctl-token") || "";
 $("token").addEventListener("change", () => sessionStorage.setItem("rovctl-token", $("token").value));
-window.rovctl = { seenStates: [], updates: 0, last: null };
+window.rovctl = { seenStates: [], updates: 0, last: null, notOkShown: {} };
 const history = [];
 const fmt = (v, d, unit) => (v === null || v === undefined) ? "\u2014" : v.toFixed(d) + (unit || "");
 
@@ -130,6 +130,10 @@ function bars(canvas, values) {
   });
 }
 
+// Why the estimate is not trusted, as the banner says it (the reason's token from the estimator).
+const NOT_OK_LABEL = { partial_view: "PARTIAL VIEW", not_refined: "NOT REFINED",
+                       bound_over_limit: "BOUND OVER LIMIT" };
+
 function show(s) {
   window.rovctl.updates++; window.rovctl.last = s;
   const name = s.state.toUpperCase();
@@ -138,7 +142,10 @@ function show(s) {
   if (seen[seen.length - 1] !== name) seen.push(name);
   $("b-failsafe").classList.toggle("on", s.failsafe);
   $("b-hold").classList.toggle("on", s.operator_hold);
-  $("b-partial").classList.toggle("on", s.recognised && !s.ok);
+  const notOk = s.recognised && !s.ok;
+  $("b-not-ok").classList.toggle("on", notOk);
+  $("b-not-ok").textContent = NOT_OK_LABEL[s.not_ok_reason] || "NOT OK";
+  if (notOk) window.rovctl.notOkShown[s.not_ok_reason] = $("b-not-ok").textContent;
   $("b-replay").classList.toggle("on", s.source === "replay");
   $("b-link").classList.remove("on");
   $("clock").textContent = "t = " + s.time_s.toFixed(1) + " s";

@@ -5,6 +5,7 @@
 
 #include "app/tools/json_writer.hpp"
 #include "control/mission.hpp"
+#include "estimator/pose_estimator.hpp"
 #include "hal/interfaces/thruster_bus.hpp"
 
 namespace rovctl::app {
@@ -34,6 +35,9 @@ std::string operator_state_json(const TelemetryRecord& r, const OperatorStateCon
   w.field("overrun", flag(telemetry_flag::overrun));
   w.field("recognised", flag(telemetry_flag::recognised));
   w.field("ok", flag(telemetry_flag::full_view));
+  // Not ok says which test failed: a bound over the line is not a partial view.
+  w.field("not_ok_reason",
+          estimator::to_string(static_cast<estimator::NotOkReason>(r.not_ok_reason)));
   w.field("fitness", estimate ? r.fitness : NAN);
   w.begin_array("spheres_seen").value(r.spheres_seen_left).value(r.spheres_seen_right).end_array();
   w.field("error_bound_mm", r.error_bound_m * 1000.0);

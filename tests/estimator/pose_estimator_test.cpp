@@ -82,6 +82,21 @@ TEST(PoseEstimator, AnEstimateNotOkSaysWhichTestItFailed) {
   EXPECT_EQ(e.not_ok_reason, NotOkReason::none);
 }
 
+// Telemetry writes the reason as its token and `rovctl view` reads it back.
+TEST(PoseEstimator, ANotOkReasonReadsBackFromItsToken) {
+  for (const NotOkReason r : {NotOkReason::none, NotOkReason::partial_view,
+                              NotOkReason::not_refined, NotOkReason::bound_over_limit}) {
+    NotOkReason back = r == NotOkReason::none ? NotOkReason::partial_view : NotOkReason::none;
+    ASSERT_TRUE(from_string(to_string(r), back)) << to_string(r);
+    EXPECT_EQ(back, r);
+  }
+  NotOkReason unchanged = NotOkReason::not_refined;
+  EXPECT_FALSE(from_string("partial", unchanged));
+  EXPECT_FALSE(from_string("", unchanged));
+  EXPECT_FALSE(from_string("unknown", unchanged));
+  EXPECT_EQ(unchanged, NotOkReason::not_refined);
+}
+
 TEST(PoseEstimator, FaithfulModeClimbsAndIsReproducible) {
   TestScene scene;
   const Eigen::Isometry3d truth =

@@ -21,7 +21,11 @@ const std::string kCalibration =
     std::string(ROVCTL_SOURCE_DIR) + "/deploy/config/stereo_calibration.yaml";
 
 struct Files {
-  fs::path dir = fs::temp_directory_path() / "rovctl_command_estimate_test";
+  // One folder per test: ctest runs this file's tests as parallel processes, and one test
+  // rewriting left.png while another reads it failed a run.
+  fs::path dir = fs::temp_directory_path() /
+                 ("rovctl_command_estimate_" +
+                  std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
   std::string left, right, config;
   Eigen::Isometry3d truth = hal::make_pose(
       {0.04, -0.02, 0.55},

@@ -7,6 +7,9 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <string>
+
+#include "estimator/pose_estimator.hpp"
 
 namespace rovctl::app {
 namespace {
@@ -29,6 +32,7 @@ TEST(TelemetryCsvReader, ReadsBackWhatTheWriterWrote) {
   a.thruster_count = 8;
   a.thruster_cmd[7] = -0.125;
   a.bus_status = 1;
+  a.not_ok_reason = static_cast<std::int32_t>(estimator::NotOkReason::partial_view);
   a.flags = telemetry_flag::estimate_valid | telemetry_flag::operator_hold;
   TelemetryRecord b;  // NaN fields stay NaN
   b.tick = 13;
@@ -54,6 +58,8 @@ TEST(TelemetryCsvReader, ReadsBackWhatTheWriterWrote) {
   EXPECT_EQ(got[0].thruster_count, 8);
   EXPECT_DOUBLE_EQ(got[0].thruster_cmd[7], -0.125);
   EXPECT_EQ(got[0].flags, a.flags);
+  EXPECT_EQ(got[0].not_ok_reason, a.not_ok_reason);
+  EXPECT_EQ(got[1].not_ok_reason, 0);  // none
   EXPECT_TRUE(std::isnan(got[1].fitness));
   EXPECT_TRUE(std::isnan(got[1].est_t_m[0]));
   std::filesystem::remove(path);
@@ -85,6 +91,54 @@ TEST(TelemetryCsvReader, NamesTheFileAndLineOfABrokenRow) {
   } catch (const std::runtime_error& e) {
     EXPECT_NE(std::string(e.what()).find(path + ":1: no column 'tick'"), std::string::npos)
         << e.what();
+  }
+  std::filesystem::remove(path);
+}
+
+// A recording made before the column existed still replays; a word the column cannot hold is an
+// error naming the file, line and column.
+TEST(TelemetryCsvReader, TheNotOkReasonIsOptionalButNeverGuessed) {
+  const std::string path = temp_file("reason.csv");
+  TelemetryRecord r;
+  r.tick = 4;
+  r.not_ok_reason = static_cast<std::int32_t>(estimator::NotOkReason::bound_over_limit);
+  char row[4096];
+  const std::string header = telemetry_csv_header();
+  const std::string line(row, format_telemetry_csv_row(r, row, sizeof(row)));
+  // The column's index in the header, to cut it out of both lines or replace its cell.
+  std::size_t column = 0;
+  for (std::size_t i = 0; i < header.find("not_ok_reason"); ++i) column += header[i] == ',';
+  const auto without = [&](const std::string& csv) {
+    std::size_t start = 0;
+    for (std::size_t c = 0; c < column; ++c) start = csv.find(',', start) + 1;
+    return csv.substr(0, start) + csv.substr(csv.find(',', start) + 1);
+  };
+  {
+    std::ofstream out(path);
+    out << without(header) << "\n" << without(line) << "\n";
+  }
+  const std::vector<TelemetryRecord> old = read_telemetry_csv(path);
+  ASSERT_EQ(old.size(), 1u);
+  EXPECT_EQ(old[0].tick, 4u);
+  EXPECT_EQ(old[0].not_ok_reason, 0);
+  {
+    std::ofstream out(path);
+    out << header << "\n" << line << "\n";
+  }
+  EXPECT_EQ(read_telemetry_csv(path)[0].not_ok_reason, r.not_ok_reason);
+  {
+    std::ofstream out(path);
+    std::string bad = line;
+    bad.replace(bad.find("bound_over_limit"), 16, "partial");
+    out << header << "\n" << bad << "\n";
+  }
+  try {
+    read_telemetry_csv(path);
+    FAIL() << "an unknown reason must be an error";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find(path + ":2: column 'not_ok_reason'"), std::string::npos)
+        << e.what();
+    EXPECT_NE(std::string(e.what()).find("'partial'"), std::string::npos) << e.what();
   }
   std::filesystem::remove(path);
 }

@@ -78,12 +78,14 @@ TEST(ValidationSet, APairScoresTheSameInAnySetThatHoldsIt) {
   EXPECT_EQ(in_three[2].ok, by_itself[0].ok);
 }
 
-PairResult result_at(const ValidationPair& pair, double range_m, bool ok, double error_mm) {
+PairResult result_at(const ValidationPair& pair, double range_m, bool ok, double error_mm,
+                     estimator::NotOkReason reason = estimator::NotOkReason::partial_view) {
   PairResult r;
   r.pair = &pair;
   r.range_m = range_m;
   r.ok = ok;
   r.partial = !ok;
+  r.not_ok_reason = ok ? estimator::NotOkReason::none : reason;
   r.translation_mm = error_mm;
   return r;
 }
@@ -93,9 +95,12 @@ TEST(ValidationSet, ScoresByRangeSplitEachConditionAtTheEdges) {
   noise.condition = "noise_jpeg";
   clear.condition = "clear";
   const std::vector<PairResult> details = {
-      result_at(noise, 0.40, true, 1.0),  result_at(clear, 0.45, true, 0.5),
-      result_at(noise, 0.90, true, 12.0), result_at(noise, 1.00, false, 3.0),
-      result_at(noise, 1.44, false, 6.0), result_at(noise, 1.46, true, 2.0),
+      result_at(noise, 0.40, true, 1.0),
+      result_at(clear, 0.45, true, 0.5),
+      result_at(noise, 0.90, true, 12.0),
+      result_at(noise, 1.00, false, 3.0),
+      result_at(noise, 1.44, false, 6.0, estimator::NotOkReason::bound_over_limit),
+      result_at(noise, 1.46, true, 2.0),
   };
   const std::vector<ConditionScore> rows = score_by_range(details, {0.5, 1.0});
   // noise: [0, 0.5) 1 pair; [0.5, 1.0) 1 (a false ok); [1.0, inf) 3 (1.00 is in the upper band).
@@ -114,6 +119,10 @@ TEST(ValidationSet, ScoresByRangeSplitEachConditionAtTheEdges) {
   EXPECT_EQ(rows[2].pairs, 3);
   EXPECT_EQ(rows[2].success, 1);
   EXPECT_EQ(rows[2].partial, 2);
+  // Split by the first test each failed: one partial view, one bound over the line.
+  EXPECT_EQ(rows[2].partial_view, 1);
+  EXPECT_EQ(rows[2].bound_over_limit, 1);
+  EXPECT_EQ(rows[2].not_refined, 0);
   EXPECT_EQ(rows[3].condition, "clear");
   EXPECT_EQ(rows[3].pairs, 1);
   EXPECT_THROW(score_by_range(details, {1.0, 0.5}), std::invalid_argument);

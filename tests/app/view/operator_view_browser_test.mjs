@@ -1,6 +1,7 @@
 // The operator view in a real browser: Debian's chromium, driven by puppeteer-core, against
 // `rovctl sim --serve`. Checks that the page loads, the camera stream updates, the state goes
-// from SEARCH (held until START from the page) to DOCKED, ABORT without the token is refused (403) and changes nothing, and ABORT
+// from SEARCH (held until START from the page) to DOCKED past passing bars (the banner names why a
+// view is not trusted), ABORT without the token is refused (403) and changes nothing, and ABORT
 // from the page puts the vehicle in neutral within 2 ticks (read back from the run's telemetry).
 // Usage: node operator_view_browser_test.mjs ROVCTL ARTIFACT_DIR   (exit 77: skipped)
 import { spawn } from "node:child_process";
@@ -53,7 +54,9 @@ try {
   // --- 1. A docking run, watched from SEARCH to DOCKED. ---
   // --hold: the vehicle waits in SEARCH for START, so the page sees the mission from its start
   // however slowly the browser comes up (on a loaded CI machine it used to miss SEARCH).
-  const run = serve(["--seed", "3", "--serve-linger", "6", "--max-time", "120", "--hold"]);
+  // Passing bars (the occluders scenario) hide a sphere now and then: the page must say so.
+  const run = serve(["--seed", "3", "--serve-linger", "6", "--max-time", "120", "--hold",
+                     "--scenario", "occluders"]);
   const url = await run.url;
   const page = await browser.newPage();
   await page.setViewport({ width: 1400, height: 820 });
@@ -81,6 +84,13 @@ try {
   check(seen.indexOf("SEARCH") < seen.indexOf("DOCKED"),
         `states seen in order: ${seen.join(" -> ")}`);
   await page.screenshot({ path: path.join(artifacts, "operator_view_docked.png") });
+  // Whenever the estimate was not ok, the banner said which test failed, in the page's words.
+  const notOk = await page.evaluate(() => window.rovctl.notOkShown);
+  const label = { partial_view: "PARTIAL VIEW", not_refined: "NOT REFINED",
+                  bound_over_limit: "BOUND OVER LIMIT" };
+  check(Object.keys(notOk).length > 0 &&
+        Object.entries(notOk).every(([reason, text]) => label[reason] === text),
+        `the not-ok banner shown, naming its reason (${JSON.stringify(notOk)})`);
   const code = await run.exited;
   check(code === 0, `rovctl sim --serve exits 0 (got ${code})`);
 
