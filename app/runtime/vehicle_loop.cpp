@@ -397,6 +397,7 @@ bool VehicleLoop::tick(const TickInfo& info) {
       v.distance_m =
           have_images ? static_cast<float>(estimate_.T_cl_marker.translation().norm()) : kNaNf;
       v.lateral_error_m = out.errors_valid ? static_cast<float>(out.lateral_error_m) : kNaNf;
+      v.not_ok_reason = have_images ? static_cast<float>(estimate_.not_ok_reason) : kNaNf;
       v.failsafe = failsafe_.tripped();
       gcs_->post_values(v);
     }

@@ -44,7 +44,7 @@ struct GcsStatusParams {
   int system_id = 1;
   int component_id = 191;
   int heartbeat_period_ms = 1000;  // HEARTBEAT as MAV_TYPE_ONBOARD_CONTROLLER
-  int values_period_ms = 250;      // the NAMED_VALUE_FLOATs (state, fitness, distance, lateral)
+  int values_period_ms = 250;  // the NAMED_VALUE_FLOATs (state, fitness, distance, lateral, not ok)
 };
 
 struct ArdusubParams {

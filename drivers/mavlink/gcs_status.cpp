@@ -1,6 +1,8 @@
 // Framing of rovctl's ground-station status, paced by the caller's clock.
 #include "drivers/mavlink/gcs_status.hpp"
 
+#include <iterator>
+
 #include "drivers/mavlink/mavlink_messages.hpp"
 
 namespace rovctl::drivers {
@@ -75,7 +77,8 @@ std::size_t GcsStatus::next_frame(std::chrono::nanoseconds now, std::span<std::u
     const std::size_t i = kValueNames.size() - values_pending_;
     --values_pending_;
     const float value[] = {sending_.mission_state, sending_.fitness, sending_.distance_m,
-                           sending_.lateral_error_m};
+                           sending_.lateral_error_m, sending_.not_ok_reason};
+    static_assert(std::size(value) == kValueNames.size());
     mavlink::NamedValueFloat m;
     m.time_boot_ms = boot_ms;
     m.value = value[i];

@@ -33,7 +33,10 @@ struct GcsValues {
   float fitness = 0.0F;          // the pose estimate's fitness
   float distance_m = 0.0F;       // camera to marker
   float lateral_error_m = 0.0F;  // the probe off the docking axis
-  bool failsafe = false;         // HEARTBEAT reports MAV_STATE_CRITICAL while tripped
+  // Why the estimate is not trusted, as estimator::NotOkReason's id: 0 ok (or nothing seen: see
+  // rov_fit), 1 partial view, 2 not refined, 3 error bound over the limit.
+  float not_ok_reason = 0.0F;
+  bool failsafe = false;  // HEARTBEAT reports MAV_STATE_CRITICAL while tripped
 };
 
 struct GcsStatusCounters {
@@ -46,8 +49,8 @@ struct GcsStatusCounters {
 class GcsStatus {
  public:
   // The names of the NAMED_VALUE_FLOATs, in the order they are sent (each <= 10 chars).
-  static constexpr std::array<const char*, 4> kValueNames = {"rov_state", "rov_fit", "rov_dist_m",
-                                                             "rov_lat_m"};
+  static constexpr std::array<const char*, 5> kValueNames = {"rov_state", "rov_fit", "rov_dist_m",
+                                                             "rov_lat_m", "rov_notok"};
   static constexpr std::uint8_t kMavTypeOnboardController = 18;
   static constexpr std::uint8_t kMavAutopilotInvalid = 8;
 

@@ -40,7 +40,7 @@ std::vector<mav::Frame> drain(GcsStatus& gcs, std::chrono::nanoseconds now) {
   return frames;
 }
 
-TEST(GcsStatus, HeartbeatAtOneHertzAndFourValuesAtFourHertzInVirtualTime) {
+TEST(GcsStatus, HeartbeatAtOneHertzAndFiveValuesAtFourHertzInVirtualTime) {
   GcsStatusParams p;
   GcsStatus gcs(p);
   GcsValues v;
@@ -48,6 +48,7 @@ TEST(GcsStatus, HeartbeatAtOneHertzAndFourValuesAtFourHertzInVirtualTime) {
   v.fitness = 0.75F;
   v.distance_m = 1.5F;
   v.lateral_error_m = -0.02F;
+  v.not_ok_reason = 3.0F;  // the bound over the limit
   gcs.post_values(v);
   std::map<std::string, int> values;
   int heartbeats = 0;
@@ -67,8 +68,11 @@ TEST(GcsStatus, HeartbeatAtOneHertzAndFourValuesAtFourHertzInVirtualTime) {
         const std::string name(mav::text_of(nv.name));
         EXPECT_LE(name.size(), 10U);
         ++values[name];
-        const std::map<std::string, float> want = {
-            {"rov_state", 2.0F}, {"rov_fit", 0.75F}, {"rov_dist_m", 1.5F}, {"rov_lat_m", -0.02F}};
+        const std::map<std::string, float> want = {{"rov_state", 2.0F},
+                                                   {"rov_fit", 0.75F},
+                                                   {"rov_dist_m", 1.5F},
+                                                   {"rov_lat_m", -0.02F},
+                                                   {"rov_notok", 3.0F}};
         ASSERT_EQ(want.count(name), 1U) << name;
         EXPECT_EQ(nv.value, want.at(name)) << name;
       } else {
@@ -77,7 +81,7 @@ TEST(GcsStatus, HeartbeatAtOneHertzAndFourValuesAtFourHertzInVirtualTime) {
     }
   }
   EXPECT_NEAR(heartbeats, 60, 1);
-  ASSERT_EQ(values.size(), 4U);
+  ASSERT_EQ(values.size(), 5U);
   for (const auto& [name, n] : values) EXPECT_NEAR(n, 240, 2) << name;
   EXPECT_EQ(gcs.counters().heartbeats, static_cast<std::uint64_t>(heartbeats));
 }

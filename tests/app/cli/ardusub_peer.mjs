@@ -206,5 +206,5 @@ export class FakeArduSub {
 
 // True when a MANUAL_CONTROL is neutral: no force on any axis (z 500 is neutral throttle).
 // The NAMED_VALUE_FLOAT names rovctl sends (<= 10 chars, MAVLink's limit).
-export const STATUS_VALUES = ["rov_state", "rov_fit", "rov_dist_m", "rov_lat_m"];
+export const STATUS_VALUES = ["rov_state", "rov_fit", "rov_dist_m", "rov_lat_m", "rov_notok"];
 export const isNeutral = (mc) => mc.x === 0 && mc.y === 0 && mc.r === 0 && mc.z === 500;
