@@ -313,7 +313,7 @@ int bench_set(const AppConfig& config, const hal::StereoRig& rig, const std::str
         dir.c_str(), pairs.size(), frames, static_cast<unsigned long>(seed),
         config.estimator.mode.c_str(), kRightTranslationMm, kRightRotationDeg);
     std::printf("%-14s %5s %8s %9s %8s %14s %10s %10s %9s\n", "condition", "pairs", "success",
-                "false-ok", "partial", "view/ref/bound", "mm med/p95", "deg med/p95", "ms p95");
+                "false-ok", "not-ok", "view/ref/bound", "mm med/p95", "deg med/p95", "ms p95");
     for (const ConditionScore& s : scores) {
       char split[24];
       std::snprintf(split, sizeof split, "%d/%d/%d", s.partial_view, s.not_refined,

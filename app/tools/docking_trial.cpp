@@ -9,6 +9,7 @@
 #include <random>
 
 #include "app/runtime/vehicle.hpp"
+#include "app/tools/validation_set.hpp"
 #include "hal/mock/battery_model.hpp"
 #include "hal/primitives/percentile.hpp"
 
@@ -117,6 +118,17 @@ TrialResult run_docking_trial(const AppConfig& config, const hal::StereoRig& rig
     }
     TelemetryRecord r;
     while (vehicle.telemetry().try_pop(r)) {
+      // Drained every tick: the camera's last frame is this record's.
+      if ((r.flags & telemetry_flag::full_view) != 0 && vehicle.backends().sim != nullptr) {
+        TelemetryRecord at_capture = r;
+        score_against_truth(vehicle.backends().sim->camera().last_T_cl_marker_truth(), at_capture);
+        const double mm = at_capture.est_error_m * 1000.0;
+        const double deg = at_capture.est_error_rad * 180.0 / M_PI;
+        ++result.ok_ticks;
+        if (mm >= kRightTranslationMm || deg >= kRightRotationDeg) ++result.ok_wrong_ticks;
+        result.ok_error_mm_max = std::max(result.ok_error_mm_max, mm);
+        result.ok_error_deg_max = std::max(result.ok_error_deg_max, deg);
+      }
       score_against_truth(world.truth().T_cl_marker, r);
       if ((r.flags & telemetry_flag::recognised) && (r.flags & telemetry_flag::truth_valid)) {
         estimate_errors_mm.push_back(r.est_error_m * 1000.0);

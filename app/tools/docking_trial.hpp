@@ -103,6 +103,12 @@ struct TrialResult {
   double estimator_ms_mean = 0.0;
   double recognised_fraction = 0.0;
   double estimate_error_mm_median = -1.0;  // while recognised
+  // Ticks whose estimate was ok, and of those the ones the truth of their own image (the camera's
+  // capture instant, not the tick's: latency is the servo's business) puts at or over
+  // kRightTranslationMm or kRightRotationDeg: ok but wrong, as `rovctl bench --set` counts it.
+  std::uint64_t ok_ticks = 0;
+  std::uint64_t ok_wrong_ticks = 0;
+  double ok_error_mm_max = 0.0, ok_error_deg_max = 0.0;  // the worst ok tick's, against its image
   std::vector<std::string> events;
   std::vector<FailsafeLogEntry> failsafe_log;
   std::vector<TelemetryRecord> records;  // when keep_records

@@ -12,6 +12,7 @@
 #include "app/tools/atomic_file.hpp"
 #include "app/tools/json_writer.hpp"
 #include "app/tools/plot.hpp"
+#include "app/tools/validation_set.hpp"
 #include "control/mission.hpp"
 #include "hal/primitives/percentile.hpp"
 
@@ -82,6 +83,11 @@ SimSummary summarise(const std::vector<TrialResult>& results) {
     s.tick_jitter_ms_p99 = std::max(s.tick_jitter_ms_p99, r.jitter_p99_ms);
     s.tick_jitter_ms_max = std::max(s.tick_jitter_ms_max, r.jitter_max_ms);
     estimator_ms += r.estimator_ms_mean;
+    s.ok_ticks += r.ok_ticks;
+    s.ok_wrong_ticks += r.ok_wrong_ticks;
+    if (r.ok_wrong_ticks > 0) ++s.trials_ok_wrong;
+    s.ok_error_mm_max = std::max(s.ok_error_mm_max, r.ok_error_mm_max);
+    s.ok_error_deg_max = std::max(s.ok_error_deg_max, r.ok_error_deg_max);
   }
   s.success_rate = s.trials > 0 ? static_cast<double>(s.docked) / s.trials : 0.0;
   s.time_to_dock_s_median = percentile_or_none(times, 0.5);
@@ -110,7 +116,12 @@ std::string summary_json(const SimSummary& s) {
       .field("ticks", static_cast<long>(s.ticks))
       .field("tick_jitter_ms_max", s.tick_jitter_ms_max)
       .field("estimator_ms_mean", s.estimator_ms_mean)
-      .field("estimate_error_mm_median", s.estimate_error_mm_median);
+      .field("estimate_error_mm_median", s.estimate_error_mm_median)
+      .field("ok_ticks", static_cast<long>(s.ok_ticks))
+      .field("ok_wrong_ticks", static_cast<long>(s.ok_wrong_ticks))
+      .field("trials_ok_wrong", s.trials_ok_wrong)
+      .field("ok_error_mm_max", s.ok_error_mm_max)
+      .field("ok_error_deg_max", s.ok_error_deg_max);
   if (s.recharge) {
     j.begin_object("recharge")
         .field("recharged", s.recharged)
@@ -136,7 +147,7 @@ std::string summary_json(const SimSummary& s) {
 
 std::string summary_text(const SimSummary& s, const std::vector<TrialResult>& results) {
   std::ostringstream o;
-  char line[512];
+  char line[768];
   o << "trial  start_m  current_mps  result     state    aborts  t_dock_s  lateral_mm  yaw_deg  "
        "est_err_mm\n";
   for (const TrialResult& r : results) {
@@ -153,12 +164,16 @@ std::string summary_text(const SimSummary& s, const std::vector<TrialResult>& re
       "\ndocked %d of %d (%.0f %%)  time to dock median %.1f s  lateral error p95 %.1f mm  "
       "yaw error p95 %.2f deg\ntouched the station over %.0f mm off the axis: %d trials "
       "(largest touch %.1f mm)\nticks %llu  overruns %llu  tick jitter p99 %.3f ms (max %.3f)  "
-      "estimator %.2f ms per tick  estimate error median %.1f mm\n",
+      "estimator %.2f ms per tick  estimate error median %.1f mm\nok estimates %llu ticks, ok "
+      "but wrong (>= %.0f mm or %.0f deg from their image's truth) %llu in %d trials (worst ok "
+      "%.1f mm, %.2f deg)\n",
       s.docked, s.trials, 100.0 * s.success_rate, s.time_to_dock_s_median,
       s.final_lateral_error_mm_p95, s.final_yaw_error_deg_p95, kTouchOffCentreMm,
       s.touched_off_centre, s.touch_lateral_mm_max, static_cast<unsigned long long>(s.ticks),
       static_cast<unsigned long long>(s.overruns), s.tick_jitter_ms_p99, s.tick_jitter_ms_max,
-      s.estimator_ms_mean, s.estimate_error_mm_median);
+      s.estimator_ms_mean, s.estimate_error_mm_median, static_cast<unsigned long long>(s.ok_ticks),
+      kRightTranslationMm, kRightRotationDeg, static_cast<unsigned long long>(s.ok_wrong_ticks),
+      s.trials_ok_wrong, s.ok_error_mm_max, s.ok_error_deg_max);
   o << line;
   if (s.recharge) {
     o << "\ntrial  result      end of charge                          seated_h  contact  "
@@ -287,7 +302,7 @@ void write_sim_outputs(const std::string& dir, const std::vector<TrialResult>& r
            "success,captured,final_state,aborts,failsafe,time_to_dock_s,lateral_error_mm,yaw_error_"
            "deg,"
            "sim_time_s,ticks,overruns,jitter_p99_ms,estimator_ms_mean,recognised_fraction,"
-           "estimate_error_mm_median";
+           "estimate_error_mm_median,ok_ticks,ok_wrong_ticks,ok_error_mm_max,ok_error_deg_max";
   const bool recharge = summary.recharge;
   if (recharge) {
     table << ",recharged,charged,departed,end_of_charge,seated_h,contact_fraction,"
@@ -303,7 +318,8 @@ void write_sim_outputs(const std::string& dir, const std::vector<TrialResult>& r
           << r.final_state << ',' << r.aborts << ',' << r.failsafe << ',' << r.time_to_dock_s << ','
           << r.lateral_error_mm << ',' << r.yaw_error_deg << ',' << r.sim_time_s << ',' << r.ticks
           << ',' << r.overruns << ',' << r.jitter_p99_ms << ',' << r.estimator_ms_mean << ','
-          << r.recognised_fraction << ',' << r.estimate_error_mm_median;
+          << r.recognised_fraction << ',' << r.estimate_error_mm_median << ',' << r.ok_ticks << ','
+          << r.ok_wrong_ticks << ',' << r.ok_error_mm_max << ',' << r.ok_error_deg_max;
     if (recharge) {
       const RechargeResult& h = r.charge;
       table << ',' << trial_recharged(r) << ',' << h.charged << ',' << h.departed << ",\""

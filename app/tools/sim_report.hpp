@@ -31,6 +31,12 @@ struct SimSummary {
   double tick_jitter_ms_max = 0.0;  // worst tick of any trial
   double estimator_ms_mean = 0.0;
   double estimate_error_mm_median = -1.0;
+  // Over all trials: ticks with an ok estimate, those ok but wrong against their own image's truth
+  // (TrialResult::ok_wrong_ticks), the trials with any, and the worst ok tick's errors.
+  std::uint64_t ok_ticks = 0;
+  std::uint64_t ok_wrong_ticks = 0;
+  int trials_ok_wrong = 0;
+  double ok_error_mm_max = 0.0, ok_error_deg_max = 0.0;
   // The recharging mission (mission.kind recharge); absent from the reports otherwise.
   bool recharge = false;
   int recharged = 0;  // trial_recharged(): docked, charged and departed clear, marker in view

@@ -1,6 +1,7 @@
 // The trial runner flies the real application against the mock HAL: it docks on a fixed seed,
 // levels from the IMU, and run-time faults put the vehicle in the safe state.
 #include "app/tools/docking_trial.hpp"
+#include "app/tools/validation_set.hpp"
 
 #include <gtest/gtest.h>
 
@@ -84,6 +85,11 @@ TEST(DockingTrial, DocksOnAFixedSeed) {
   EXPECT_EQ(r.overruns, 0u);
   EXPECT_FALSE(r.records.empty());
   EXPECT_LT(r.estimate_error_mm_median, 10.0);
+  // Every ok estimate within the bench's "right" of the truth of its own image.
+  EXPECT_GT(r.ok_ticks, r.records.size() / 2);
+  EXPECT_EQ(r.ok_wrong_ticks, 0u) << "worst ok " << r.ok_error_mm_max << " mm";
+  EXPECT_LT(r.ok_error_mm_max, kRightTranslationMm);
+  EXPECT_LT(r.ok_error_deg_max, kRightRotationDeg);
 }
 
 // Largest tilt of the camera off level over a trial: the angle between world down (the

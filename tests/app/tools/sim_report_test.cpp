@@ -45,5 +45,36 @@ TEST(SimReport, ATouchOffTheSocketAxisIsCountedEvenWhenTheTrialDockedLater) {
   EXPECT_EQ(summarise({TrialResult{}}).touch_lateral_mm_max, -1.0) << "never touched";
 }
 
+// The closed loop's false ok: ticks whose ok estimate was wrong, summed over the trials and said in
+// the JSON and the text, with the trials that had any and the worst ok tick.
+TEST(SimReport, OkButWrongTicksAreSummedAndSaid) {
+  std::vector<TrialResult> results = {captured_trial(true, 3.0), captured_trial(true, 3.0),
+                                      captured_trial(true, 3.0)};
+  results[0].ok_ticks = 600;
+  results[0].ok_error_mm_max = 2.5;
+  results[0].ok_error_deg_max = 0.4;
+  results[1].ok_ticks = 500;
+  results[1].ok_wrong_ticks = 3;
+  results[1].ok_error_mm_max = 14.0;
+  results[1].ok_error_deg_max = 1.1;
+  results[2].ok_ticks = 550;
+  results[2].ok_wrong_ticks = 1;
+  results[2].ok_error_mm_max = 6.0;
+  results[2].ok_error_deg_max = 7.5;
+  const SimSummary s = summarise(results);
+  EXPECT_EQ(s.ok_ticks, 1650u);
+  EXPECT_EQ(s.ok_wrong_ticks, 4u);
+  EXPECT_EQ(s.trials_ok_wrong, 2);
+  EXPECT_DOUBLE_EQ(s.ok_error_mm_max, 14.0);
+  EXPECT_DOUBLE_EQ(s.ok_error_deg_max, 7.5);
+  const std::string json = summary_json(s);
+  EXPECT_NE(json.find("\"ok_wrong_ticks\": 4"), std::string::npos) << json;
+  EXPECT_NE(json.find("\"trials_ok_wrong\": 2"), std::string::npos) << json;
+  const std::string text = summary_text(s, results);
+  EXPECT_NE(text.find("ok but wrong (>= 10 mm or 5 deg from their image's truth) 4 in 2 trials"),
+            std::string::npos)
+      << text;
+}
+
 }  // namespace
 }  // namespace rovctl::app
