@@ -51,9 +51,10 @@ void describe(hal::ParamVisitor& v, GcsStatusParams& p) {
           {"-", 1, 255, "component id of the status (191: MAV_COMP_ID_ONBOARD_COMPUTER)"});
   v.param("heartbeat_period_ms", p.heartbeat_period_ms,
           {"ms", 100, 5000, "period of the status HEARTBEAT (MAV_TYPE_ONBOARD_CONTROLLER)"});
-  v.param("values_period_ms", p.values_period_ms,
-          {"ms", 50, 5000,
-           "period of the NAMED_VALUE_FLOATs rov_state, rov_fit, rov_dist_m, rov_lat_m, rov_notok"});
+  v.param(
+      "values_period_ms", p.values_period_ms,
+      {"ms", 50, 5000,
+       "period of the NAMED_VALUE_FLOATs rov_state, rov_fit, rov_dist_m, rov_lat_m, rov_notok"});
 }
 
 void describe(hal::ParamVisitor& v, ArdusubParams& p) {
