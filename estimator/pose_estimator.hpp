@@ -25,12 +25,13 @@
 
 namespace rovctl::estimator {
 
-// Why a recognised estimate is not ok: the first of these that holds.
+// Why a recognised estimate is not ok: the first of these that holds. The numbers go out as they
+// are (the ground station's rov_notok, the telemetry record), so each is fixed here.
 enum class NotOkReason : std::uint8_t {
-  none,              // ok, or not recognised at all
-  partial_view,      // a sphere not seen in one view or both (spheres_seen)
-  not_refined,       // improved mode: no refinement accepted, so no error bound
-  bound_over_limit,  // improved mode: the fit's error bound over ok_bound_mm or ok_bound_deg
+  none = 0,              // ok, or not recognised at all
+  partial_view = 1,      // a sphere not seen in one view or both (spheres_seen)
+  not_refined = 2,       // improved mode: no refinement accepted, so no error bound
+  bound_over_limit = 3,  // improved mode: the fit's error bound over ok_bound_mm or ok_bound_deg
 };
 const char* to_string(NotOkReason reason);
 // The inverse of to_string (a telemetry file read back); false for any other text.
