@@ -101,6 +101,23 @@ void describe(hal::ParamVisitor& v, EstimatorParams& p) {
           {"deg", 0.01, 180.0,
            "improved mode: an estimate is ok only when its rotation error bound (as ok_bound_mm) "
            "is within this"});
+  v.section("confirm",
+            "improved mode, in the loop (run, sim): an ok estimate is trusted only when the frame "
+            "before had an ok pose it agrees with, within both error bounds and the vehicle's "
+            "motion in between (rovctl estimate and bench judge one pair and skip this)",
+            [&p](hal::ParamVisitor& s) {
+              s.param("rate_dps", p.confirm.rate_dps,
+                      {"deg/s", 0.0, 3600.0,
+                       "the fastest the vehicle turns: the rotation two frames may differ by "
+                       "beyond their bounds, and with the marker's range, how far it may seem to "
+                       "move; 0 turns confirmation off"});
+              s.param("speed_mps", p.confirm.speed_mps,
+                      {"m/s", 0.0, 100.0, "the fastest the vehicle moves"});
+              s.param("gap_ms", p.confirm.gap_ms,
+                      {"ms", 1.0, 10000.0,
+                       "the frame before confirms only if taken this recently (a skipped frame "
+                       "or two at 33 ms)"});
+            });
   v.section("ga", "the genetic algorithm (paper's Table 2)", [&p](hal::ParamVisitor& s) {
     s.param("population", p.ga.population, {"-", 4, 2000, "number of genes"});
     s.param("selection_rate", p.ga.selection_rate,

@@ -59,6 +59,13 @@ struct GaReading {
   std::string coding = "gray";  // binary: a field is a plain 12-bit number; gray: a Gray code
 };
 
+// In the loop only (improved mode): an ok estimate must be confirmed by the frame before.
+struct ConfirmationParams {
+  double rate_dps = 60.0;  // the fastest the vehicle turns; 0 turns the check off
+  double speed_mps = 1.0;  // the fastest it moves
+  double gap_ms = 100.0;   // the last sound pose confirms only this recently
+};
+
 struct EstimatorParams {
   // "faithful": the paper's RM-GA alone. "improved": plus the switches below.
   std::string mode = "improved";
@@ -85,6 +92,7 @@ struct EstimatorParams {
   double smear_ring_max = 0.5;
   double ok_bound_mm = 10.0;
   double ok_bound_deg = 5.0;
+  ConfirmationParams confirm;
   // Improved mode: how far the segmentation divides out the scene's colour cast (0 off, 1 full
   // von Kries white balance to the median colour).
   double water_correction = 0.0;

@@ -42,13 +42,16 @@ const char* to_string(NotOkReason reason) {
       return "not_refined";
     case NotOkReason::bound_over_limit:
       return "bound_over_limit";
+    case NotOkReason::unconfirmed:
+      return "unconfirmed";
   }
   return "unknown";
 }
 
 bool from_string(std::string_view text, NotOkReason& reason) {
-  for (const NotOkReason r : {NotOkReason::none, NotOkReason::partial_view,
-                              NotOkReason::not_refined, NotOkReason::bound_over_limit}) {
+  for (const NotOkReason r :
+       {NotOkReason::none, NotOkReason::partial_view, NotOkReason::not_refined,
+        NotOkReason::bound_over_limit, NotOkReason::unconfirmed}) {
     if (text == to_string(r)) {
       reason = r;
       return true;

@@ -32,6 +32,7 @@ enum class NotOkReason : std::uint8_t {
   partial_view = 1,      // a sphere not seen in one view or both (spheres_seen)
   not_refined = 2,       // improved mode: no refinement accepted, so no error bound
   bound_over_limit = 3,  // improved mode: the fit's error bound over ok_bound_mm or ok_bound_deg
+  unconfirmed = 4,       // in the loop: the frame before had no ok pose, or one it disagrees with
 };
 const char* to_string(NotOkReason reason);
 // The inverse of to_string (a telemetry file read back); false for any other text.

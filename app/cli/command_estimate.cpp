@@ -53,6 +53,8 @@ const char* not_ok_label(estimator::NotOkReason reason) {
       return "NOT refined";
     case estimator::NotOkReason::bound_over_limit:
       return "BOUND over limit";
+    case estimator::NotOkReason::unconfirmed:
+      return "UNCONFIRMED";
     case estimator::NotOkReason::none:
       break;
   }
@@ -78,6 +80,10 @@ std::string not_ok_message(const estimator::PoseEstimate& e, const AppConfig& co
                     "every sphere seen, but the error bound %.1f mm / %.1f deg is over "
                     "estimator.ok_bound_mm / ok_bound_deg (%g mm / %g deg)",
                     e.error_bound_m * 1000.0, e.error_bound_deg, p.ok_bound_mm, p.ok_bound_deg);
+      break;
+    case estimator::NotOkReason::unconfirmed:  // one pair has no frame before it; for completeness
+      std::snprintf(text, sizeof text,
+                    "not confirmed by the frame before (estimator.confirm.rate_dps, speed_mps)");
       break;
     case estimator::NotOkReason::none:
       std::snprintf(text, sizeof text, "fitness %.3f", e.fitness);

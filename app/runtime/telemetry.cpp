@@ -72,7 +72,8 @@ void fill_schedule_fields(TelemetryRecord& r, const TickInfo& tick,
 const char* telemetry_csv_header() noexcept {
   return "tick,release,time_s,deadline_ns,wakeup_ns,jitter_us,capture_ns,"
          "capture_us,segment_us,estimate_us,control_us,actuate_us,telemetry_us,skipped_total,"
-         "mission_state,generations,fitness,spheres_left,spheres_right,error_bound_m,not_ok_reason,"
+         "mission_state,generations,fitness,spheres_left,spheres_right,"
+         "error_bound_m,error_bound_deg,not_ok_reason,"
          "est_x_m,est_y_m,est_z_m,est_qw,est_qx,est_qy,est_qz,"
          "truth_x_m,truth_y_m,truth_z_m,truth_qw,truth_qx,truth_qy,truth_qz,"
          "est_error_m,est_error_rad,"
@@ -101,6 +102,7 @@ std::size_t format_telemetry_csv_row(const TelemetryRecord& r, char* buf,
   row.i64(r.spheres_seen_left);
   row.i64(r.spheres_seen_right);
   row.f(r.error_bound_m);
+  row.f(r.error_bound_deg);
   row.put("%s", estimator::to_string(static_cast<estimator::NotOkReason>(r.not_ok_reason)));
   for (const double v : r.est_t_m) row.f(v);
   for (const double v : r.est_q_wxyz) row.f(v);

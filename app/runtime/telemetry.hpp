@@ -62,7 +62,8 @@ struct TelemetryRecord {
   std::int32_t generations = 0;    // RM-GA generations this tick
   double fitness = kNaN;
   std::int32_t spheres_seen_left = 0, spheres_seen_right = 0;
-  double error_bound_m = kNaN;  // translation error bound of the estimate, when refined
+  double error_bound_m = kNaN;    // translation error bound of the estimate, when refined
+  double error_bound_deg = kNaN;  // its rotation error bound, when refined
   // Why a recognised estimate is not trusted (estimator::NotOkReason as int; 0, none, when ok or
   // not recognised). Written as its token, so the CSV says "bound_over_limit", not a number.
   std::int32_t not_ok_reason = 0;

@@ -65,6 +65,8 @@ VehicleLoop::VehicleLoop(const AppConfig& config, const hal::StereoRig& rig,
       scheduler_(scheduler),
       telemetry_(telemetry),
       estimator_(rig, config.marker, config.estimator, seed),
+      confirmation_(config.estimator.improved() ? config.estimator.confirm
+                                                : estimator::ConfirmationParams{0.0, 0.0, 1.0}),
       servo_(config.control.servo, config.vehicle.T_body_cl()),
       attitude_(config.control.attitude),
       allocator_(config.vehicle.thrusters, config.control.allocation),
@@ -164,6 +166,7 @@ bool VehicleLoop::tick(const TickInfo& info) {
     auto timer = scheduler_.stage(Stage::estimate);
     if (have_images) {
       estimate_ = estimator_.estimate();
+      confirmation_.judge(estimate_, frame_.left_stamp);
     } else {
       estimate_.recognised = false;
       estimate_.generations = 0;
@@ -411,6 +414,7 @@ bool VehicleLoop::tick(const TickInfo& info) {
         rec.spheres_seen_left = estimate_.spheres_seen[0];
         rec.spheres_seen_right = estimate_.spheres_seen[1];
         rec.error_bound_m = estimate_.error_bound_m;
+        rec.error_bound_deg = estimate_.error_bound_deg;
         rec.not_ok_reason = static_cast<std::int32_t>(estimate_.not_ok_reason);
         if (estimate_.ok) flags |= telemetry_flag::full_view;
         put_pose(estimate_.T_cl_marker, rec.est_t_m, rec.est_q_wxyz);

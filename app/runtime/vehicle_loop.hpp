@@ -23,6 +23,7 @@
 #include "control/pd_visual_servo.hpp"
 #include "control/thruster_health.hpp"
 #include "drivers/mavlink/gcs_status.hpp"
+#include "estimator/pose_confirmation.hpp"
 #include "estimator/pose_estimator.hpp"
 #include "hal/interfaces/sensors.hpp"
 #include "hal/interfaces/stereo_camera.hpp"
@@ -115,6 +116,7 @@ class VehicleLoop {
   drivers::GcsStatus* gcs_ = nullptr;
 
   estimator::PoseEstimator estimator_;
+  estimator::PoseConfirmation confirmation_;  // an ok estimate must agree with the frame before
   control::PdVisualServo servo_;
   control::AttitudeStabilizer attitude_;
   control::ControlAllocator allocator_;

@@ -126,6 +126,7 @@ TrialResult run_docking_trial(const AppConfig& config, const hal::StereoRig& rig
         const double deg = at_capture.est_error_rad * 180.0 / M_PI;
         ++result.ok_ticks;
         if (mm >= kRightTranslationMm || deg >= kRightRotationDeg) ++result.ok_wrong_ticks;
+        if (mm > r.error_bound_m * 1000.0 || deg > r.error_bound_deg) ++result.ok_over_bound_ticks;
         result.ok_error_mm_max = std::max(result.ok_error_mm_max, mm);
         result.ok_error_deg_max = std::max(result.ok_error_deg_max, deg);
       }

@@ -35,6 +35,7 @@ struct SimSummary {
   // (TrialResult::ok_wrong_ticks), the trials with any, and the worst ok tick's errors.
   std::uint64_t ok_ticks = 0;
   std::uint64_t ok_wrong_ticks = 0;
+  std::uint64_t ok_over_bound_ticks = 0;  // ok ticks off by more than their own error bound
   int trials_ok_wrong = 0;
   double ok_error_mm_max = 0.0, ok_error_deg_max = 0.0;
   // The recharging mission (mission.kind recharge); absent from the reports otherwise.

@@ -48,8 +48,9 @@ std::vector<TelemetryRecord> read_telemetry_csv(const std::string& path) {
                     c_ax = index("dock_axial_m"), c_yaw = index("dock_yaw_rad"),
                     c_count = index("thruster_count"), c_cmd0 = index("cmd0"),
                     c_bus = index("bus_status"), c_flags = index("flags");
-  // Recordings made before the column existed read as "none": they said only ok or not.
+  // Recordings made before these columns existed read as "none" and no rotation bound.
   const auto reason_column = column.find("not_ok_reason");
+  const auto bound_deg_column = column.find("error_bound_deg");
   std::vector<TelemetryRecord> records;
   int line_no = 1;
   while (std::getline(in, line)) {
@@ -80,13 +81,14 @@ std::vector<TelemetryRecord> read_telemetry_csv(const std::string& path) {
     r.spheres_seen_left = static_cast<std::int32_t>(number(c_sl));
     r.spheres_seen_right = static_cast<std::int32_t>(number(c_sr));
     r.error_bound_m = number(c_bound);
+    if (bound_deg_column != column.end()) r.error_bound_deg = number(bound_deg_column->second);
     if (reason_column != column.end()) {
       const std::string& token = cells[reason_column->second];
       estimator::NotOkReason reason = estimator::NotOkReason::none;
       if (!estimator::from_string(token, reason)) {
         throw std::runtime_error(path + ":" + std::to_string(line_no) +
-                                 ": column 'not_ok_reason' is not none, partial_view, not_refined "
-                                 "or bound_over_limit: '" +
+                                 ": column 'not_ok_reason' is not none, partial_view, not_refined, "
+                                 "bound_over_limit or unconfirmed: '" +
                                  token + "'");
       }
       r.not_ok_reason = static_cast<std::int32_t>(reason);

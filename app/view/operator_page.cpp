@@ -132,7 +132,7 @@ function bars(canvas, values) {
 
 // Why the estimate is not trusted, as the banner says it (the reason's token from the estimator).
 const NOT_OK_LABEL = { partial_view: "PARTIAL VIEW", not_refined: "NOT REFINED",
-                       bound_over_limit: "BOUND OVER LIMIT" };
+                       bound_over_limit: "BOUND OVER LIMIT", unconfirmed: "UNCONFIRMED" };
 
 function show(s) {
   window.rovctl.updates++; window.rovctl.last = s;
@@ -151,7 +151,8 @@ function show(s) {
   $("clock").textContent = "t = " + s.time_s.toFixed(1) + " s";
   $("v-fit").textContent = fmt(s.fitness, 3);
   $("v-seen").textContent = s.spheres_seen[0] + " / " + s.spheres_seen[1];
-  $("v-bound").textContent = fmt(s.error_bound_mm, 1, " mm");
+  $("v-bound").textContent =
+      fmt(s.error_bound_mm, 1, " mm") + " / " + fmt(s.error_bound_deg, 1, "\u00b0");
   $("v-dist").textContent = fmt(s.distance_m, 3, " m");
   $("v-lat").textContent = fmt(s.lateral_error_mm, 1, " mm");
   $("v-ax").textContent = fmt(s.axial_error_mm, 1, " mm");

@@ -41,6 +41,7 @@ std::string operator_state_json(const TelemetryRecord& r, const OperatorStateCon
   w.field("fitness", estimate ? r.fitness : NAN);
   w.begin_array("spheres_seen").value(r.spheres_seen_left).value(r.spheres_seen_right).end_array();
   w.field("error_bound_mm", r.error_bound_m * 1000.0);
+  w.field("error_bound_deg", r.error_bound_deg);
   w.field("distance_m", distance_m);
   w.field("lateral_error_mm", errors ? r.dock_lateral_error_m * 1000.0 : NAN);
   w.field("axial_error_mm", errors ? r.dock_axial_error_m * 1000.0 : NAN);

@@ -84,8 +84,9 @@ TEST(PoseEstimator, AnEstimateNotOkSaysWhichTestItFailed) {
 
 // Telemetry writes the reason as its token and `rovctl view` reads it back.
 TEST(PoseEstimator, ANotOkReasonReadsBackFromItsToken) {
-  for (const NotOkReason r : {NotOkReason::none, NotOkReason::partial_view,
-                              NotOkReason::not_refined, NotOkReason::bound_over_limit}) {
+  for (const NotOkReason r :
+       {NotOkReason::none, NotOkReason::partial_view, NotOkReason::not_refined,
+        NotOkReason::bound_over_limit, NotOkReason::unconfirmed}) {
     NotOkReason back = r == NotOkReason::none ? NotOkReason::partial_view : NotOkReason::none;
     ASSERT_TRUE(from_string(to_string(r), back)) << to_string(r);
     EXPECT_EQ(back, r);

@@ -132,6 +132,7 @@ TEST(Telemetry, HeaderAndRowHaveTheSameColumns) {
   r.tick = 7;
   r.fitness = 0.75;
   r.thruster_cmd[3] = -0.5;
+  r.error_bound_deg = 5.5;
   r.not_ok_reason = static_cast<std::int32_t>(estimator::NotOkReason::bound_over_limit);
   char buf[2048];
   const std::size_t n = format_telemetry_csv_row(r, buf, sizeof buf);
@@ -150,6 +151,8 @@ TEST(Telemetry, HeaderAndRowHaveTheSameColumns) {
   EXPECT_EQ(col("cmd3"), "-0.5");
   EXPECT_EQ(col("truth_x_m"), "nan");                   // not simulated: NaN, not a fake zero
   EXPECT_EQ(col("not_ok_reason"), "bound_over_limit");  // a word the engineer reads, not a code
+  EXPECT_EQ(col("error_bound_deg"), "5.5");
+  EXPECT_EQ(col("error_bound_m"), "nan");
 }
 
 TEST(Telemetry, ScheduleFieldsComeFromTheTick) {

@@ -90,6 +90,8 @@ TEST(DockingTrial, DocksOnAFixedSeed) {
   EXPECT_EQ(r.ok_wrong_ticks, 0u) << "worst ok " << r.ok_error_mm_max << " mm";
   EXPECT_LT(r.ok_error_mm_max, kRightTranslationMm);
   EXPECT_LT(r.ok_error_deg_max, kRightRotationDeg);
+  // The bound is a 99 % quantile: at most about 1 % of ok ticks outside it.
+  EXPECT_LE(100 * r.ok_over_bound_ticks, r.ok_ticks) << r.ok_over_bound_ticks << " over";
 }
 
 // Largest tilt of the camera off level over a trial: the angle between world down (the

@@ -55,6 +55,7 @@ TEST(SimReport, OkButWrongTicksAreSummedAndSaid) {
   results[0].ok_error_deg_max = 0.4;
   results[1].ok_ticks = 500;
   results[1].ok_wrong_ticks = 3;
+  results[1].ok_over_bound_ticks = 5;
   results[1].ok_error_mm_max = 14.0;
   results[1].ok_error_deg_max = 1.1;
   results[2].ok_ticks = 550;
@@ -65,15 +66,18 @@ TEST(SimReport, OkButWrongTicksAreSummedAndSaid) {
   EXPECT_EQ(s.ok_ticks, 1650u);
   EXPECT_EQ(s.ok_wrong_ticks, 4u);
   EXPECT_EQ(s.trials_ok_wrong, 2);
+  EXPECT_EQ(s.ok_over_bound_ticks, 5u);
   EXPECT_DOUBLE_EQ(s.ok_error_mm_max, 14.0);
   EXPECT_DOUBLE_EQ(s.ok_error_deg_max, 7.5);
   const std::string json = summary_json(s);
   EXPECT_NE(json.find("\"ok_wrong_ticks\": 4"), std::string::npos) << json;
   EXPECT_NE(json.find("\"trials_ok_wrong\": 2"), std::string::npos) << json;
+  EXPECT_NE(json.find("\"ok_over_bound_ticks\": 5"), std::string::npos) << json;
   const std::string text = summary_text(s, results);
   EXPECT_NE(text.find("ok but wrong (>= 10 mm or 5 deg from their image's truth) 4 in 2 trials"),
             std::string::npos)
       << text;
+  EXPECT_NE(text.find("off by more than their own error bound 5"), std::string::npos) << text;
 }
 
 }  // namespace

@@ -32,6 +32,8 @@ TEST(TelemetryCsvReader, ReadsBackWhatTheWriterWrote) {
   a.thruster_count = 8;
   a.thruster_cmd[7] = -0.125;
   a.bus_status = 1;
+  a.error_bound_m = 0.0125;
+  a.error_bound_deg = 3.25;
   a.not_ok_reason = static_cast<std::int32_t>(estimator::NotOkReason::partial_view);
   a.flags = telemetry_flag::estimate_valid | telemetry_flag::operator_hold;
   TelemetryRecord b;  // NaN fields stay NaN
@@ -60,6 +62,9 @@ TEST(TelemetryCsvReader, ReadsBackWhatTheWriterWrote) {
   EXPECT_EQ(got[0].flags, a.flags);
   EXPECT_EQ(got[0].not_ok_reason, a.not_ok_reason);
   EXPECT_EQ(got[1].not_ok_reason, 0);  // none
+  EXPECT_DOUBLE_EQ(got[0].error_bound_m, 0.0125);
+  EXPECT_DOUBLE_EQ(got[0].error_bound_deg, 3.25);
+  EXPECT_TRUE(std::isnan(got[1].error_bound_deg));
   EXPECT_TRUE(std::isnan(got[1].fitness));
   EXPECT_TRUE(std::isnan(got[1].est_t_m[0]));
   std::filesystem::remove(path);

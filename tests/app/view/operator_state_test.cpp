@@ -17,6 +17,7 @@ TelemetryRecord recognised_tick(bool ok, estimator::NotOkReason reason) {
   r.spheres_seen_left = 3;
   r.spheres_seen_right = 3;
   r.error_bound_m = 0.0137;
+  r.error_bound_deg = 3.4;
   r.est_t_m = {0.0, 0.0, 1.4};
   r.est_q_wxyz = {1.0, 0.0, 0.0, 0.0};
   r.not_ok_reason = static_cast<std::int32_t>(reason);
@@ -37,6 +38,7 @@ TEST(OperatorState, SaysWhichTestANotOkEstimateFailed) {
   EXPECT_TRUE(has(bound, "\"not_ok_reason\": \"bound_over_limit\"")) << bound;
   EXPECT_TRUE(has(bound, "\"spheres_seen\": [3, 3]")) << bound;
   EXPECT_TRUE(has(bound, "\"error_bound_mm\": 13.7")) << bound;
+  EXPECT_TRUE(has(bound, "\"error_bound_deg\": 3.4")) << bound;
 
   const std::string partial =
       operator_state_json(recognised_tick(false, estimator::NotOkReason::partial_view), {});

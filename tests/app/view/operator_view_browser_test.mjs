@@ -87,7 +87,7 @@ try {
   // Whenever the estimate was not ok, the banner said which test failed, in the page's words.
   const notOk = await page.evaluate(() => window.rovctl.notOkShown);
   const label = { partial_view: "PARTIAL VIEW", not_refined: "NOT REFINED",
-                  bound_over_limit: "BOUND OVER LIMIT" };
+                  bound_over_limit: "BOUND OVER LIMIT", unconfirmed: "UNCONFIRMED" };
   check(Object.keys(notOk).length > 0 &&
         Object.entries(notOk).every(([reason, text]) => label[reason] === text),
         `the not-ok banner shown, naming its reason (${JSON.stringify(notOk)})`);
