@@ -74,7 +74,7 @@ constexpr std::string_view kPage = R"HTML(<!DOCTYPE html>
     <div class="panel"><h2>Estimate</h2><table>
       <tr><td>fitness</td><td class="v" id="v-fit"></td></tr>
       <tr><td>spheres seen L / R</td><td class="v" id="v-seen"></td></tr>
-      <tr><td>error bound (3&sigma;)</td><td class="v" id="v-bound"></td></tr>
+      <tr><td>error bound (position / rotation)</td><td class="v" id="v-bound"></td></tr>
       <tr><td>distance</td><td class="v" id="v-dist"></td></tr>
       <tr><td>lateral error</td><td class="v" id="v-lat"></td></tr>
       <tr><td>axial error</td><td class="v" id="v-ax"></td></tr>
