@@ -8,24 +8,22 @@ import sys
 
 sys.dont_write_bytecode = True  # importing the generator must not leave __pycache__ in the tree
 
-try:
-    import cv2
-    import numpy as np
-except ImportError:
-    # Debian's python3-opencv lives in the system interpreter, not in a pyenv or venv one.
-    if os.path.realpath(sys.executable) != os.path.realpath("/usr/bin/python3") and os.path.exists("/usr/bin/python3"):
-        os.execv("/usr/bin/python3", ["/usr/bin/python3"] + sys.argv)
-    raise
-
-import argparse
-import json
-import math
-import shutil
-import tempfile
-import time
-
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
+import debian_python  # noqa: E402
+
+debian_python.require_opencv()
+
+import argparse  # noqa: E402
+import json  # noqa: E402
+import math  # noqa: E402
+import shutil  # noqa: E402
+import tempfile  # noqa: E402
+import time  # noqa: E402
+
+import cv2  # noqa: E402
+import numpy as np  # noqa: E402
+
 import render_water_set as gen  # noqa: E402
 
 DEFAULT_SAMPLE = os.path.normpath(os.path.join(HERE, "..", "..", "data", "water_set"))

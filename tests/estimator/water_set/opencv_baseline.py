@@ -12,21 +12,19 @@ import sys
 
 sys.dont_write_bytecode = True  # importing the generator must not leave __pycache__ in the tree
 
-try:
-    import cv2
-    import numpy as np
-except ImportError:
-    # Debian's python3-opencv lives in the system interpreter, not in a pyenv or venv one.
-    if os.path.realpath(sys.executable) != os.path.realpath("/usr/bin/python3") and os.path.exists("/usr/bin/python3"):
-        os.execv("/usr/bin/python3", ["/usr/bin/python3"] + sys.argv)
-    raise
-
-import argparse
-import json
-import math
-
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
+import debian_python  # noqa: E402
+
+debian_python.require_opencv()
+
+import argparse  # noqa: E402
+import json  # noqa: E402
+import math  # noqa: E402
+
+import cv2  # noqa: E402
+import numpy as np  # noqa: E402
+
 import render_water_set as gen  # noqa: E402  (the calibration reader and the marker's geometry only)
 
 RIGHT_MM, RIGHT_DEG = 10.0, 5.0  # as rovctl bench --set

@@ -20,17 +20,17 @@ import tempfile
 import threading
 import time
 
-try:
-    import cv2
-    import numpy as np
-except ImportError:
-    # Debian's python3-opencv lives in the system interpreter, not in a pyenv or venv one.
-    if __name__ == "__main__" and os.path.exists("/usr/bin/python3") and \
-            os.path.realpath(sys.executable) != os.path.realpath("/usr/bin/python3"):
-        os.execv("/usr/bin/python3", ["/usr/bin/python3"] + sys.argv)
-    raise
-
 HERE = os.path.dirname(os.path.abspath(__file__))
+if __name__ == "__main__":
+    sys.dont_write_bytecode = True  # importing the helper must not leave __pycache__ in the tree
+    sys.path.insert(0, HERE)
+    import debian_python
+
+    debian_python.require_opencv()
+
+import cv2  # noqa: E402
+import numpy as np  # noqa: E402
+
 DEFAULT_CALIBRATION = os.path.normpath(os.path.join(HERE, "..", "..", "..", "deploy", "config",
                                                     "stereo_calibration.yaml"))
 
