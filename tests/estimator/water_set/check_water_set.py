@@ -39,13 +39,17 @@ def check_pose():
     return gen.Pose(R, [0.04, 0.03, 0.70])
 
 
+def rotation_from_quat_wxyz(q_wxyz):
+    """The manifest's unit quaternion as a matrix, written apart from the generator's inverse."""
+    w, x, y, z = q_wxyz
+    return np.array([[1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)],
+                     [2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)],
+                     [2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)]])
+
+
 def projected_truth(K, D, R_cam, t_cam, q_wxyz, t_m):
     """Sphere centres through cv2.projectPoints with the calibration, from the manifest's truth only."""
-    w, x, y, z = q_wxyz
-    Rm = np.array([[1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)],
-                   [2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)],
-                   [2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)]])
-    R = R_cam @ Rm
+    R = R_cam @ rotation_from_quat_wxyz(q_wxyz)
     t = R_cam @ np.asarray(t_m, np.float64) + t_cam
     rvec, _ = cv2.Rodrigues(R)
     pts = np.array([c for _, c, _ in gen.SPHERES], np.float64)

@@ -26,10 +26,10 @@ import cv2  # noqa: E402
 import numpy as np  # noqa: E402
 
 import render_water_set as gen  # noqa: E402  (the calibration reader and the marker's geometry only)
+from check_water_set import HUES, rotation_from_quat_wxyz  # noqa: E402  (read apart from gen)
 
 RIGHT_MM, RIGHT_DEG = 10.0, 5.0  # as rovctl bench --set
-# OpenCV's hue (0..180) windows and floors of a plain pipeline: what the reference used.
-HUES = {"red": [(0, 12), (165, 180)], "green": [(40, 90)], "blue": [(100, 135)]}
+# The self-check's hue windows (OpenCV's 0..180) and floors: a plain pipeline's fixed thresholds.
 SAT_MIN, VAL_MIN = 90, 25
 MIN_AREA_PX = 12
 ROUND_FILL = 0.6  # least share of its enclosing circle a sphere's blob fills
@@ -61,13 +61,6 @@ def kabsch(model, measured):
     d = np.sign(np.linalg.det(Vt.T @ U.T))
     R = Vt.T @ np.diag([1.0, 1.0, d]) @ U.T
     return R, cd - R @ cm
-
-
-def quat_to_R(q):
-    w, x, y, z = q
-    return np.array([[1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)],
-                     [2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)],
-                     [2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)]])
 
 
 def estimate(rig, left, right):
@@ -150,7 +143,7 @@ def main():
         pose = estimate(rig, *images)
         if pose is not None:
             R, t = pose
-            R_true = quat_to_R(pair["q_cl_marker_wxyz"])
+            R_true = rotation_from_quat_wxyz(pair["q_cl_marker_wxyz"])
             t_true = np.asarray(pair["t_cl_marker_m"], np.float64)
             row["found"] = True
             row["mm"] = float(np.linalg.norm(t - t_true) * 1000.0)
