@@ -81,6 +81,22 @@ def blob_centroid(img, name, centre, radius_px):
     return np.array([m["m10"] / m["m00"], m["m01"] / m["m00"]]), int(m["m00"])
 
 
+def open_set(folder, calibration=None):
+    """(manifest path, manifest, calibration path) of a set, for the scripts that score one; exits
+    naming the file when the manifest cannot be read. The calibration: the given one, else the set's
+    own file if it has one, else deploy/config's."""
+    manifest_path = os.path.join(folder, "manifest.json")
+    try:
+        with open(manifest_path) as f:
+            manifest = json.load(f)
+    except (OSError, ValueError) as e:
+        sys.exit("%s: cannot read: %s" % (manifest_path, e))
+    if calibration is None:
+        own = os.path.join(folder, manifest.get("calibration", ""))
+        calibration = own if manifest.get("calibration") and os.path.isfile(own) else gen.DEFAULT_CALIBRATION
+    return manifest_path, manifest, calibration
+
+
 def check_render(calibration, keep):
     errors = []
     rig = gen.Rig(calibration)

@@ -26,7 +26,7 @@ import cv2  # noqa: E402
 import numpy as np  # noqa: E402
 
 import render_water_set as gen  # noqa: E402  (the calibration reader and the marker's geometry only)
-from check_water_set import HUES, rotation_from_quat_wxyz  # noqa: E402  (read apart from gen)
+from check_water_set import HUES, open_set, rotation_from_quat_wxyz  # noqa: E402  (read apart from gen)
 
 RIGHT_MM, RIGHT_DEG = 10.0, 5.0  # as rovctl bench --set
 # The self-check's hue windows (OpenCV's 0..180) and floors: a plain pipeline's fixed thresholds.
@@ -107,16 +107,7 @@ def main():
     ap.add_argument("--verbose", action="store_true", help="one line per pair")
     args = ap.parse_args()
 
-    manifest_path = os.path.join(args.set, "manifest.json")
-    try:
-        with open(manifest_path) as f:
-            manifest = json.load(f)
-    except (OSError, ValueError) as e:
-        sys.exit("%s: cannot read: %s" % (manifest_path, e))
-    calibration = args.calibration
-    if calibration is None:
-        own = os.path.join(args.set, manifest.get("calibration", ""))
-        calibration = own if manifest.get("calibration") and os.path.isfile(own) else gen.DEFAULT_CALIBRATION
+    manifest_path, manifest, calibration = open_set(args.set, args.calibration)
     rig = gen.Rig(calibration)
     try:
         edges = [float(x) for x in args.range_bands_m.split(",") if x]
