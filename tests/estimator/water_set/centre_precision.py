@@ -30,7 +30,7 @@ import cv2  # noqa: E402
 import numpy as np  # noqa: E402
 
 import render_water_set as gen  # noqa: E402  (the marker's geometry and the default rig only)
-from check_water_set import blob_centroid, open_set, rotation_from_quat_wxyz  # noqa: E402
+from check_water_set import blob_centroid, open_set, read_cameras, rotation_from_quat_wxyz  # noqa: E402
 
 RAYS = 48
 STEP_PX = 0.1
@@ -138,13 +138,7 @@ def main():
         expects.append((cond, method, limit))
 
     manifest_path, manifest, calibration = open_set(args.set, args.calibration)
-    fs = cv2.FileStorage(calibration, cv2.FILE_STORAGE_READ)
-    if not fs.isOpened() or fs.getNode("K1").empty() or fs.getNode("T").empty():
-        sys.exit("%s: not a stereo calibration (K1, D1, K2, D2, R, T)" % calibration)
-    cams = {"left": (fs.getNode("K1").mat(), fs.getNode("D1").mat(), np.eye(3), np.zeros(3)),
-            "right": (fs.getNode("K2").mat(), fs.getNode("D2").mat(), fs.getNode("R").mat(),
-                      fs.getNode("T").mat().ravel())}
-    fs.release()
+    cams = read_cameras(calibration)
     wanted = [c for c in args.conditions.split(",") if c]
     pairs = manifest.get("pairs", [])
     unknown = [c for c in wanted if c not in {p["condition"] for p in pairs}]

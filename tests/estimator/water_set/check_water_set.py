@@ -97,6 +97,23 @@ def open_set(folder, calibration=None):
     return manifest_path, manifest, calibration
 
 
+def read_cameras(calibration):
+    """{view: (K, D, R, t)} from an OpenCV stereo calibration, x_view = R x_left + t; read apart from
+    the generator. Exits naming the file when a node is missing."""
+    nodes = ("K1", "D1", "K2", "D2", "R", "T")
+    try:
+        fs = cv2.FileStorage(calibration, cv2.FILE_STORAGE_READ)
+    except (cv2.error, SystemError):  # a file OpenCV cannot parse raises rather than opening empty
+        sys.exit("%s: not a stereo calibration (%s)" % (calibration, ", ".join(nodes)))
+    if not fs.isOpened() or any(fs.getNode(n).empty() for n in nodes):
+        sys.exit("%s: not a stereo calibration (%s)" % (calibration, ", ".join(nodes)))
+    cams = {"left": (fs.getNode("K1").mat(), fs.getNode("D1").mat(), np.eye(3), np.zeros(3)),
+            "right": (fs.getNode("K2").mat(), fs.getNode("D2").mat(), fs.getNode("R").mat(),
+                      fs.getNode("T").mat().ravel())}
+    fs.release()
+    return cams
+
+
 def check_render(calibration, keep):
     errors = []
     rig = gen.Rig(calibration)
@@ -105,11 +122,7 @@ def check_render(calibration, keep):
     try:
         entry = gen.make_pair(rig, "clear", 0, 1, out, pose_override=check_pose())
         took = time.time() - t0
-        fs = cv2.FileStorage(calibration, cv2.FILE_STORAGE_READ)
-        cams = {"left": (fs.getNode("K1").mat(), fs.getNode("D1").mat(), np.eye(3), np.zeros(3)),
-                "right": (fs.getNode("K2").mat(), fs.getNode("D2").mat(), fs.getNode("R").mat(),
-                          fs.getNode("T").mat().ravel())}
-        fs.release()
+        cams = read_cameras(calibration)
         worst = 0.0
         for view, (K, D, Rc, tc) in cams.items():
             img = cv2.imread(os.path.join(out, entry[view]), cv2.IMREAD_COLOR)
