@@ -88,6 +88,12 @@ void describe(hal::ParamVisitor& v, EstimatorParams& p) {
            "improved mode: the rim fit replaces the centroids' pose only when the rims fit this "
            "well (rms); a sharp sphere's rim fits to 0.35-0.45 px, a blurred or noisy one (motion "
            "blur, JPEG) leans the pose while its centroids stay true"});
+  v.param("rim_quantile_rms_px", p.rim_quantile_rms_px,
+          {"px", 0.1, 10.0,
+           "improved mode: a rim fit's error bound is its covariance's 99 % quantile only when the "
+           "rims fit this well (rms); a looser fit (JPEG blocks, a faded or smeared edge) keeps 3 "
+           "sigma of the trace, as the centroids do: the quantile was calibrated on sharp rims, "
+           "and a JPEG-blocked rim fitting to 0.61 px was 6.4 deg off inside a 3.5 deg quantile"});
   v.param("rim_ring_max", p.rim_ring_max,
           {"-", 0.0, 1.0,
            "improved mode: the rim fit replaces the centroids' pose only when no sphere's colour "

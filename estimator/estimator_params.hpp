@@ -84,6 +84,7 @@ struct EstimatorParams {
   double sphere_support = 0.8;
   double rim_support = 0.4;
   double rim_sharp_rms_px = 0.62;
+  double rim_quantile_rms_px = 0.5;
   double rim_ring_max = 0.1;
   // Improved mode: a motion-blurred sphere fills its disc and smears over part of its ring, so it
   // scores under sphere_support while its centroid (mid-exposure) is right. It counts as seen when

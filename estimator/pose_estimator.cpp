@@ -309,10 +309,11 @@ PoseEstimate PoseEstimator::estimate_on_labels(Look look) {
         estimate.rim_refined = true;
         estimate.rim_rms_px = fit.rms_px;
         // A 5 px median rounds a 14 px sphere's rim off by a bias its covariance does not know
-        // (a seed-3 noise + JPEG pair fitted 39 deg off inside a 3.5 deg quantile): the third
-        // look keeps the trace's 3 sigma.
-        const ErrorBound bound = look == Look::denoised ? error_bound_3_sigma(fit.covariance)
-                                                        : error_bound_99(fit.covariance);
+        // (a seed-3 noise + JPEG pair fitted 39 deg off inside a 3.5 deg quantile), and so do
+        // JPEG's chroma blocks on a rim that fits loosely: both keep the trace's 3 sigma.
+        const bool sharp = look != Look::denoised && fit.rms_px <= params_.rim_quantile_rms_px;
+        const ErrorBound bound =
+            sharp ? error_bound_99(fit.covariance) : error_bound_3_sigma(fit.covariance);
         estimate.error_bound_deg = bound.deg;
         estimate.error_bound_m = bound.m;
         estimate.mirror_fits = false;

@@ -222,20 +222,73 @@ std::vector<double> range_edges(const CliArgs& args) {
   return edges;
 }
 
+// `--by FIELD --by-edges 1,1.5`: a manifest number to split each condition's score by, and its
+// edges, ascending. Empty field when not asked for.
+struct FieldSplit {
+  std::string field;
+  std::vector<double> edges;
+};
+
+FieldSplit field_split(const CliArgs& args) {
+  FieldSplit split;
+  if (!args.has("--by") && !args.has("--by-edges")) return split;
+  if (!args.has("--by") || !args.has("--by-edges")) {
+    throw UsageError("rovctl bench: --by FIELD and --by-edges E1,E2,... go together");
+  }
+  split.field = args.get("--by");
+  for (const std::string& item : args.get_list("--by-edges")) {
+    char* end = nullptr;
+    const double v = std::strtod(item.c_str(), &end);
+    if (item.empty() || *end != '\0' || !std::isfinite(v) ||
+        (!split.edges.empty() && !(v > split.edges.back()))) {
+      throw UsageError(
+          "rovctl bench: --by-edges must be ascending numbers separated by commas, got '" +
+          args.get("--by-edges") + "' (at '" + item + "')");
+    }
+    split.edges.push_back(v);
+  }
+  return split;
+}
+
+// What a band of a condition (by range, or by a manifest number) reports, after its edges.
+JsonWriter& band_fields(JsonWriter& json, const ConditionScore& s) {
+  return json.field("pairs", s.pairs)
+      .field("success", s.success)
+      .field("success_rate", static_cast<double>(s.success) / s.pairs)
+      .field("false_ok", s.false_ok)
+      .field("partial", s.partial)
+      .field("partial_view", s.partial_view)
+      .field("not_refined", s.not_refined)
+      .field("bound_over_limit", s.bound_over_limit)
+      .field("translation_mm_median", s.translation_mm_median)
+      .field("rotation_deg_median", s.rotation_deg_median);
+}
+
 // `rovctl bench --set DIR`: the estimator scored on an independent validation set, per condition.
 int bench_set(const AppConfig& config, const hal::StereoRig& rig, const std::string& dir,
               int frames, std::uint64_t seed, const std::vector<double>& range_edges_m,
-              bool json_out, bool verbose) {
+              const FieldSplit& split, bool json_out, bool verbose) {
   std::vector<ValidationPair> pairs;
   try {
     pairs = load_validation_set(dir);
   } catch (const std::invalid_argument& e) {
     throw ConfigError(e.what());
   }
+  // Before the estimator's minutes: a field no pair has is a typing error.
+  if (!split.field.empty() &&
+      std::none_of(pairs.begin(), pairs.end(), [&split](const ValidationPair& p) {
+        return p.numbers.count(split.field) > 0;
+      })) {
+    throw UsageError("rovctl bench --by " + split.field + ": no pair of " + dir +
+                     "/manifest.json has a number '" + split.field + "'");
+  }
   std::vector<PairResult> details;
   const std::vector<ConditionScore> scores =
       score_validation_set(rig, config.marker, config.estimator, pairs, frames, &details, seed);
   const std::vector<ConditionScore> by_range = score_by_range(details, range_edges_m);
+  const std::vector<FieldBandScore> by_field =
+      split.field.empty() ? std::vector<FieldBandScore>{}
+                          : score_by_field(details, split.field, split.edges);
   if (verbose) {
     for (const PairResult& r : details) {
       std::fprintf(
@@ -291,20 +344,24 @@ int bench_set(const AppConfig& config, const hal::StereoRig& rig, const std::str
       json.begin_object()
           .field("condition", s.condition)
           .field("range_from_m", s.range_from_m)
-          .field("range_to_m", s.range_to_m)  // null: no upper edge
-          .field("pairs", s.pairs)
-          .field("success", s.success)
-          .field("success_rate", static_cast<double>(s.success) / s.pairs)
-          .field("false_ok", s.false_ok)
-          .field("partial", s.partial)
-          .field("partial_view", s.partial_view)
-          .field("not_refined", s.not_refined)
-          .field("bound_over_limit", s.bound_over_limit)
-          .field("translation_mm_median", s.translation_mm_median)
-          .field("rotation_deg_median", s.rotation_deg_median)
-          .end_object();
+          .field("range_to_m", s.range_to_m);  // null: no upper edge
+      band_fields(json, s).end_object();
     }
-    json.end_array().end_object();
+    json.end_array();
+    if (!split.field.empty()) {
+      json.begin_array("by_field");
+      for (const FieldBandScore& b : by_field) {
+        const ConditionScore& s = b.score;
+        json.begin_object()
+            .field("condition", s.condition)
+            .field("field", b.field)
+            .field("from", b.from)  // null: no lower edge
+            .field("to", b.to);     // null: no upper edge
+        band_fields(json, s).end_object();
+      }
+      json.end_array();
+    }
+    json.end_object();
     std::cout << json.str() << "\n";
   } else {
     std::printf(
@@ -315,12 +372,12 @@ int bench_set(const AppConfig& config, const hal::StereoRig& rig, const std::str
     std::printf("%-14s %5s %8s %9s %8s %14s %10s %10s %9s\n", "condition", "pairs", "success",
                 "false-ok", "not-ok", "view/ref/bound", "mm med/p95", "deg med/p95", "ms p95");
     for (const ConditionScore& s : scores) {
-      char split[24];
-      std::snprintf(split, sizeof split, "%d/%d/%d", s.partial_view, s.not_refined,
+      char reasons[24];
+      std::snprintf(reasons, sizeof reasons, "%d/%d/%d", s.partial_view, s.not_refined,
                     s.bound_over_limit);
       std::printf("%-14s %5d %7.0f%% %8.0f%% %8d %14s %5.1f/%-5.1f %5.2f/%-5.2f %8.2f\n",
                   s.condition.c_str(), s.pairs, 100.0 * s.success / std::max(1, s.pairs),
-                  100.0 * s.false_ok / std::max(1, s.pairs), s.partial, split,
+                  100.0 * s.false_ok / std::max(1, s.pairs), s.partial, reasons,
                   s.translation_mm_median, s.translation_mm_p95, s.rotation_deg_median,
                   s.rotation_deg_p95, s.ms_per_frame_p95);
     }
@@ -332,6 +389,25 @@ int bench_set(const AppConfig& config, const hal::StereoRig& rig, const std::str
       std::printf("%-14s %4.2f-%-5s %6d %7.0f%% %8.0f%%\n", s.condition.c_str(), s.range_from_m, to,
                   s.pairs, 100.0 * s.success / s.pairs, 100.0 * s.false_ok / s.pairs);
     }
+    if (!split.field.empty()) {
+      std::printf("\nby %s:\n%-14s %17s %5s %8s %9s\n", split.field.c_str(), "condition", "band",
+                  "pairs", "success", "false-ok");
+      for (const FieldBandScore& b : by_field) {
+        char band[48];
+        if (std::isfinite(b.from) && std::isfinite(b.to)) {
+          std::snprintf(band, sizeof band, "%g to %g", b.from, b.to);
+        } else if (std::isfinite(b.to)) {
+          std::snprintf(band, sizeof band, "under %g", b.to);
+        } else if (std::isfinite(b.from)) {
+          std::snprintf(band, sizeof band, "%g and over", b.from);
+        } else {
+          std::snprintf(band, sizeof band, "all");
+        }
+        const ConditionScore& s = b.score;
+        std::printf("%-14s %17s %5d %7.0f%% %8.0f%%\n", s.condition.c_str(), band, s.pairs,
+                    100.0 * s.success / s.pairs, 100.0 * s.false_ok / s.pairs);
+      }
+    }
   }
   return kExitOk;
 }
@@ -339,19 +415,22 @@ int bench_set(const AppConfig& config, const hal::StereoRig& rig, const std::str
 }  // namespace
 
 int command_bench(const Words& words) {
-  const CliArgs args = CliArgs::parse(
-      "bench", words,
-      {"--config", "--pairs", "--frame-cap", "--set", "--frames", "--seed", "--range-bands-m"},
-      {"--json", "--verbose"});
+  const CliArgs args = CliArgs::parse("bench", words,
+                                      {"--config", "--pairs", "--frame-cap", "--set", "--frames",
+                                       "--seed", "--range-bands-m", "--by", "--by-edges"},
+                                      {"--json", "--verbose"});
   const std::string config_file =
       args.has("--config") ? args.get("--config") : default_config_path();
   const AppConfig config = load_app_config(config_file);
   const hal::StereoRig rig = load_rig(config);
   if (args.has("--set")) {
-    return bench_set(config, rig, args.get("--set"),
-                     static_cast<int>(args.get_int("--frames", 10, 1, 10000)),
-                     static_cast<std::uint64_t>(args.get_int("--seed", 0, 0, 1000000)),
-                     range_edges(args), args.has("--json"), args.has("--verbose"));
+    return bench_set(
+        config, rig, args.get("--set"), static_cast<int>(args.get_int("--frames", 10, 1, 10000)),
+        static_cast<std::uint64_t>(args.get_int("--seed", 0, 0, 1000000)), range_edges(args),
+        field_split(args), args.has("--json"), args.has("--verbose"));
+  }
+  if (args.has("--by") || args.has("--by-edges")) {
+    throw UsageError("rovctl bench: --by splits a validation set's scores; it needs --set DIR");
   }
   const int n_pairs = static_cast<int>(args.get_int("--pairs", 100, 3, 100000));
   const int cap = static_cast<int>(args.get_int("--frame-cap", 100, 1, 100000));

@@ -36,8 +36,9 @@ commands:
              marker pose in the left camera frame from one stereo pair
   bench      [--config FILE] [--json]     estimator throughput and convergence
   bench      --set DIR [--frames N] [--seed S] [--range-bands-m 0.5,1.0,1.3] [--json] [--verbose]
-             the estimator on a validation set (DIR/manifest.json), per condition
-             and per band of the marker's true range
+             [--by FIELD --by-edges E1,E2,...]
+             the estimator on a validation set (DIR/manifest.json), per condition,
+             per band of the marker's true range, and per band of a manifest number
   study      [--config FILE] [--quick] [--seeds N] [--out DIR] [--json]
              the paper's GA-parameter study on this machine
   run        --config FILE                the vehicle, with the backends the config names

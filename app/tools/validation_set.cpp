@@ -8,7 +8,9 @@
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <opencv2/imgcodecs.hpp>
+#include <optional>
 #include <stdexcept>
 
 #include "estimator/pose_estimator.hpp"
@@ -112,6 +114,36 @@ std::vector<std::string> conditions_in_set_order(const std::vector<PairResult>& 
   return order;
 }
 
+// Each condition's pairs split at `edges` by `value_of` (pairs without a value left out), the
+// lowest band starting at `lowest`. `what` names the edges in the error.
+std::vector<FieldBandScore> score_by_band(
+    const std::vector<PairResult>& details, const std::vector<double>& edges, double lowest,
+    const std::string& what,
+    const std::function<std::optional<double>(const PairResult&)>& value_of) {
+  for (std::size_t i = 0; i < edges.size(); ++i) {
+    if (!std::isfinite(edges[i]) || !(edges[i] > lowest) || (i > 0 && !(edges[i] > edges[i - 1]))) {
+      throw std::invalid_argument(what + " must be finite and ascending");
+    }
+  }
+  std::vector<FieldBandScore> rows;
+  for (const std::string& c : conditions_in_set_order(details)) {
+    for (std::size_t band = 0; band <= edges.size(); ++band) {
+      FieldBandScore row;
+      row.from = band == 0 ? lowest : edges[band - 1];
+      row.to = band == edges.size() ? std::numeric_limits<double>::infinity() : edges[band];
+      std::vector<PairResult> in_band;
+      for (const PairResult& r : details) {
+        const std::optional<double> v = value_of(r);
+        if (r.pair->condition == c && v && *v >= row.from && *v < row.to) in_band.push_back(r);
+      }
+      if (in_band.empty()) continue;
+      row.score = summarise(c, in_band, {});
+      rows.push_back(row);
+    }
+  }
+  return rows;
+}
+
 }  // namespace
 
 std::vector<ValidationPair> load_validation_set(const std::string& dir) {
@@ -145,6 +177,13 @@ std::vector<ValidationPair> load_validation_set(const std::string& dir) {
       v.T_cl_marker.translation() = Eigen::Vector3d(t[0], t[1], t[2]);
       v.visible_left = visible(p["spheres_visible_left"]);
       v.visible_right = visible(p["spheres_visible_right"]);
+      for (const auto& kv : p) {
+        double value = 0.0;
+        if (kv.second.IsScalar() && YAML::convert<double>::decode(kv.second, value) &&
+            std::isfinite(value)) {
+          v.numbers[kv.first.as<std::string>()] = value;
+        }
+      }
       pairs.push_back(std::move(v));
     } catch (const YAML::Exception& e) {
       fail(file, i, std::string("missing or malformed field (") + e.msg + ")");
@@ -210,28 +249,36 @@ std::vector<ConditionScore> score_validation_set(const hal::StereoRig& rig,
 
 std::vector<ConditionScore> score_by_range(const std::vector<PairResult>& details,
                                            const std::vector<double>& edges_m) {
-  for (std::size_t i = 0; i < edges_m.size(); ++i) {
-    if (!(edges_m[i] > 0.0) || (i > 0 && !(edges_m[i] > edges_m[i - 1]))) {
-      throw std::invalid_argument("range edges must be positive and ascending");
-    }
+  if (!edges_m.empty() && !(edges_m.front() > 0.0)) {
+    throw std::invalid_argument("range edges must be positive and ascending");
   }
   std::vector<ConditionScore> rows;
-  for (const std::string& c : conditions_in_set_order(details)) {
-    for (std::size_t band = 0; band <= edges_m.size(); ++band) {
-      const double from = band == 0 ? 0.0 : edges_m[band - 1];
-      const double to =
-          band == edges_m.size() ? std::numeric_limits<double>::infinity() : edges_m[band];
-      std::vector<PairResult> in_band;
-      for (const PairResult& r : details) {
-        if (r.pair->condition == c && r.range_m >= from && r.range_m < to) in_band.push_back(r);
-      }
-      if (in_band.empty()) continue;
-      ConditionScore s = summarise(c, in_band, {});
-      s.range_from_m = from;
-      s.range_to_m = to;
-      rows.push_back(s);
-    }
+  for (const FieldBandScore& band :
+       score_by_band(details, edges_m, 0.0, "range edges",
+                     [](const PairResult& r) { return std::optional<double>(r.range_m); })) {
+    ConditionScore s = band.score;
+    s.range_from_m = band.from;
+    s.range_to_m = band.to;
+    rows.push_back(s);
   }
+  return rows;
+}
+
+std::vector<FieldBandScore> score_by_field(const std::vector<PairResult>& details,
+                                           const std::string& field,
+                                           const std::vector<double>& edges) {
+  const auto value = [&field](const PairResult& r) -> std::optional<double> {
+    const auto it = r.pair->numbers.find(field);
+    if (it == r.pair->numbers.end()) return std::nullopt;
+    return it->second;
+  };
+  if (std::none_of(details.begin(), details.end(),
+                   [&value](const PairResult& r) { return value(r).has_value(); })) {
+    throw std::invalid_argument("no pair of the set has a number '" + field + "'");
+  }
+  std::vector<FieldBandScore> rows = score_by_band(
+      details, edges, -std::numeric_limits<double>::infinity(), field + " edges", value);
+  for (FieldBandScore& row : rows) row.field = field;
   return rows;
 }
 

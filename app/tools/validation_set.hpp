@@ -25,6 +25,9 @@ struct ValidationPair {
   Eigen::Isometry3d T_cl_marker = Eigen::Isometry3d::Identity();
   // Visible fraction of each sphere per view, as the generator estimated it (1 = whole).
   std::map<std::string, double> visible_left, visible_right;
+  // Every number among the entry's own fields (range_m, jpeg_quality, motion_blur_px, ...): what a
+  // condition varies from pair to pair, for splitting its score.
+  std::map<std::string, double> numbers;
 };
 
 // Reads DIR/manifest.json. Throws std::invalid_argument naming the file and the entry.
@@ -85,5 +88,21 @@ std::vector<ConditionScore> score_validation_set(const hal::StereoRig& rig,
 // condition the estimator gives up. One row per condition and non-empty band, in the set's order.
 std::vector<ConditionScore> score_by_range(const std::vector<PairResult>& details,
                                            const std::vector<double>& edges_m);
+
+// A condition's score over the pairs whose manifest number `field` lies in [from, to).
+struct FieldBandScore {
+  std::string field;
+  double from = -std::numeric_limits<double>::infinity();
+  double to = std::numeric_limits<double>::infinity();
+  ConditionScore score;
+};
+
+// The same scores split by one of the pairs' manifest numbers at `edges` (ascending): how a
+// condition's score falls with what it varies (jpeg_quality, motion_blur_diameters, ...). Pairs
+// without the field are left out. One row per condition and non-empty band, in the set's order.
+// Throws std::invalid_argument when the edges are not ascending or no pair has the field.
+std::vector<FieldBandScore> score_by_field(const std::vector<PairResult>& details,
+                                           const std::string& field,
+                                           const std::vector<double>& edges);
 
 }  // namespace rovctl::app

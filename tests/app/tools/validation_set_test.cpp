@@ -129,6 +129,55 @@ TEST(ValidationSet, ScoresByRangeSplitEachConditionAtTheEdges) {
   EXPECT_THROW(score_by_range(details, {0.0}), std::invalid_argument);
 }
 
+TEST(ValidationSet, ScoresByFieldSplitOnlyThePairsThatHaveIt) {
+  ValidationPair q45, q62, q90, clear;
+  q45.condition = q62.condition = q90.condition = "noise_jpeg";
+  q45.numbers["jpeg_quality"] = 45;
+  q62.numbers["jpeg_quality"] = 62;
+  q90.numbers["jpeg_quality"] = 90;
+  clear.condition = "clear";
+  clear.numbers["range_m"] = 0.8;
+  const std::vector<PairResult> details = {
+      result_at(q45, 1.2, false, 4.0, estimator::NotOkReason::bound_over_limit),
+      result_at(clear, 0.8, true, 0.5),
+      result_at(q62, 1.2, true, 2.0),
+      result_at(q90, 1.2, true, 11.0),
+  };
+  const std::vector<FieldBandScore> rows = score_by_field(details, "jpeg_quality", {50, 62});
+  // [-inf, 50): q45; [50, 62): empty, no row; [62, inf): q62 (on the edge) and q90. The clear
+  // pair has no JPEG quality and is in no row.
+  ASSERT_EQ(rows.size(), 2u);
+  EXPECT_EQ(rows[0].field, "jpeg_quality");
+  EXPECT_TRUE(std::isinf(rows[0].from) && rows[0].from < 0);
+  EXPECT_EQ(rows[0].to, 50);
+  EXPECT_EQ(rows[0].score.condition, "noise_jpeg");
+  EXPECT_EQ(rows[0].score.pairs, 1);
+  EXPECT_EQ(rows[0].score.bound_over_limit, 1);
+  EXPECT_EQ(rows[1].from, 62);
+  EXPECT_TRUE(std::isinf(rows[1].to));
+  EXPECT_EQ(rows[1].score.pairs, 2);
+  EXPECT_EQ(rows[1].score.success, 1);
+  EXPECT_EQ(rows[1].score.false_ok, 1);
+  EXPECT_THROW(score_by_field(details, "jpeg_quality", {62, 50}), std::invalid_argument);
+  EXPECT_THROW(score_by_field(details, "motion_blur_px", {10}), std::invalid_argument);
+}
+
+TEST(ValidationSet, TheSampleCarriesWhatEachConditionVaries) {
+  for (const ValidationPair& p : load_validation_set(kSample)) {
+    EXPECT_EQ(p.numbers.count("range_m"), 1u) << p.name;
+    EXPECT_NEAR(p.numbers.at("range_m"), p.T_cl_marker.translation().norm(), 1e-3) << p.name;
+    EXPECT_EQ(p.numbers.count("condition"), 0u) << p.name;  // words are not numbers
+    if (p.condition == "noise_jpeg") {
+      EXPECT_EQ(p.numbers.count("jpeg_quality"), 1u) << p.name;
+      EXPECT_EQ(p.numbers.count("full_well_e"), 1u) << p.name;
+    }
+    if (p.condition == "motion_blur") {
+      EXPECT_EQ(p.numbers.count("motion_blur_px"), 1u) << p.name;
+      EXPECT_EQ(p.numbers.count("motion_blur_diameters"), 1u) << p.name;
+    }
+  }
+}
+
 TEST(ValidationSet, ABrokenManifestIsNamed) {
   const fs::path dir = fs::temp_directory_path() / "rovctl_validation_set_test";
   fs::create_directories(dir);

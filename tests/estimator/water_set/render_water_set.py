@@ -13,6 +13,7 @@ import concurrent.futures
 import json
 import math
 import os
+import re
 import shutil
 import subprocess
 import sys
@@ -641,8 +642,25 @@ def sensor_noise_jpeg(lin, rng, post):
     e = np.clip(lin, 0, 1) * fw
     e = e + rng.normal(0.0, 1.0, e.shape) * np.sqrt(np.maximum(e, 0)) + rng.normal(0.0, post["read_noise_e"], e.shape)
     img = to_8bit(e / fw)
+    if post.get("stream") == "yuyv":
+        return yuyv_round_trip(img)
     ok, buf = cv2.imencode(".jpg", img, [cv2.IMWRITE_JPEG_QUALITY, int(post["jpeg_quality"])])
     return cv2.imdecode(buf, cv2.IMREAD_COLOR)
+
+
+def yuyv_round_trip(img):
+    """What a camera streaming YUYV delivers once rovctl's V4L2 driver has decoded it
+    (cv2.COLOR_YUV2BGR_YUYV): BT.601 video-range luma per pixel, chroma averaged over each pixel pair."""
+    rgb = img[:, :, ::-1].astype(np.float64) / 255.0
+    r, g, b = rgb[..., 0], rgb[..., 1], rgb[..., 2]
+    y = 16.0 + 65.481 * r + 128.553 * g + 24.966 * b
+    cb = 128.0 - 37.797 * r - 74.203 * g + 112.0 * b
+    cr = 128.0 + 112.0 * r - 93.786 * g - 18.214 * b
+    yuyv = np.empty(img.shape[:2] + (2,), np.uint8)
+    yuyv[:, :, 0] = np.clip(np.round(y), 0, 255)
+    yuyv[:, 0::2, 1] = np.clip(np.round((cb[:, 0::2] + cb[:, 1::2]) / 2.0), 0, 255)
+    yuyv[:, 1::2, 1] = np.clip(np.round((cr[:, 0::2] + cr[:, 1::2]) / 2.0), 0, 255)
+    return cv2.cvtColor(yuyv, cv2.COLOR_YUV2BGR_YUYV)
 
 
 # ----------------------------------------------------------------------------------------------------
@@ -922,9 +940,15 @@ def cond_motion_blur(rig, rng, index):
     # Length of each sphere's smear in the left image, start to end of the exposure.
     c0 = rig.left.project(sphere_centres(pose.moved(-0.5 * motion["rvec"], -0.5 * motion["tvec"])))
     c1 = rig.left.project(sphere_centres(pose.moved(0.5 * motion["rvec"], 0.5 * motion["tvec"])))
-    blur = float(np.linalg.norm(c1 - c0, axis=1).max())
+    smear = np.linalg.norm(c1 - c0, axis=1)
+    blur = float(smear.max())
+    # The smear against each sphere's own image size (its outline's longer extent at mid-exposure):
+    # a far sphere is lost to a shorter smear than a near one.
+    diameters = [float((o.max(axis=0) - o.min(axis=0)).max())
+                 for o in (sphere_outline(rig.left, c) for c in sphere_centres(pose))]
     extra = {"motion_translation_m": round(dist, 4), "motion_rotation_deg": round(math.degrees(ang), 3),
-             "motion_blur_px": round(blur, 1)}
+             "motion_blur_px": round(blur, 1),
+             "motion_blur_diameters": round(max(s / d for s, d in zip(smear, diameters)), 2)}
     return pose, spec, {"motion": motion}, extra, notes + "; %.1f mm / %.2f deg during exposure (%.0f px smear), " \
         "truth at mid-exposure" % (dist * 1000, math.degrees(ang), blur)
 
@@ -945,10 +969,23 @@ def pair_rng(seed, condition, index):
     return np.random.default_rng([int(seed), CONDITIONS.index(condition), int(index)])
 
 
-def make_pair(rig, condition, index, seed, out_dir, pose_override=None):
-    """Render pair `index` of `condition` into out_dir/<condition>/ and return its manifest entry."""
+def make_pair(rig, condition, index, seed, out_dir, pose_override=None, stream=None):
+    """Render pair `index` of `condition` into out_dir/<condition>/ and return its manifest entry.
+
+    stream, where given (see stream_arg), replaces how a noisy pair reaches the estimator (its drawn
+    JPEG quality); every draw stays as it was, so the pair differs only in that.
+    """
     rng = pair_rng(seed, condition, index)
     pose, spec, post, extra, notes = CONDITION_BUILDERS[condition](rig, rng, index)
+    if stream is not None and post.get("noise"):
+        post["stream"] = stream["stream"]
+        extra["stream"] = stream["stream"]
+        if stream["stream"] == "yuyv":
+            del post["jpeg_quality"], extra["jpeg_quality"]
+            notes = re.sub(r"JPEG q\d+", "YUYV 4:2:2", notes)
+        else:
+            post["jpeg_quality"] = extra["jpeg_quality"] = stream["jpeg_quality"]
+            notes = re.sub(r"JPEG q\d+", "JPEG q%d" % stream["jpeg_quality"], notes)
     if pose_override is not None:
         pose = pose_override
         notes = "pose given by the caller"
@@ -1007,8 +1044,9 @@ def make_pair(rig, condition, index, seed, out_dir, pose_override=None):
 # ----------------------------------------------------------------------------------------------------
 
 
-def finished_pairs(out_dir, seed, jobs):
-    """The manifest entries of out_dir that this run would render again: same seed, images on disk."""
+def finished_pairs(out_dir, seed, stream, jobs):
+    """The manifest entries of out_dir that this run would render again: same seed and stream, images
+    on disk."""
     path = os.path.join(out_dir, "manifest.json")
     if not os.path.exists(path):
         return {}
@@ -1016,6 +1054,9 @@ def finished_pairs(out_dir, seed, jobs):
         manifest = json.load(f)
     if manifest.get("seed") != seed:
         raise SystemExit("%s: seed %s, not %d; --resume needs the same seed" % (path, manifest.get("seed"), seed))
+    if manifest.get("stream") != stream:
+        raise SystemExit("%s: --stream %s, not %s; --resume needs the same" %
+                         (path, manifest.get("stream"), stream))
     index = {}
     for entry in manifest["pairs"]:
         rel = entry.get("left", "")
@@ -1028,6 +1069,16 @@ def finished_pairs(out_dir, seed, jobs):
     return {k: index[k] for k in jobs if k in index}
 
 
+def stream_arg(text):
+    """`yuyv`, or `mjpg:Q` with a JPEG quality Q from 1 to 100."""
+    if text == "yuyv":
+        return {"stream": "yuyv"}
+    kind, _, q = text.partition(":")
+    if kind == "mjpg" and q.isdigit() and 1 <= int(q) <= 100:
+        return {"stream": "mjpg", "jpeg_quality": int(q)}
+    raise argparse.ArgumentTypeError("%r is neither yuyv nor mjpg:Q with a JPEG quality Q from 1 to 100" % text)
+
+
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--out", required=True, help="output folder")
@@ -1037,6 +1088,11 @@ def main(argv=None):
     ap.add_argument("--seed", type=int, default=1)
     ap.add_argument("--jobs", type=int, default=2, help="pairs rendered at once (one POV-Ray thread each)")
     ap.add_argument("--calibration", default=DEFAULT_CALIBRATION)
+    ap.add_argument("--stream", type=stream_arg, default=None,
+                    help="how noise + JPEG's pairs reach the estimator, in place of each pair's JPEG quality "
+                    "drawn from 40-70: mjpg:Q (quality Q) or yuyv (uncompressed 4:2:2, as the V4L2 driver "
+                    "decodes it); every other draw is kept, so the same poses and noise show what the "
+                    "stream alone costs")
     ap.add_argument("--resume", action="store_true", help="keep the pairs an earlier run of the same seed "
                     "already wrote to --out (pairs are deterministic per seed, condition and index)")
     args = ap.parse_args(argv)
@@ -1057,13 +1113,15 @@ def main(argv=None):
     start = time.time()
     entries = {}
     if args.resume:
-        entries = finished_pairs(args.out, args.seed, jobs)
+        entries = finished_pairs(args.out, args.seed, args.stream, jobs)
         print("resuming: %d of %d pairs already rendered" % (len(entries), len(jobs)), flush=True)
 
     def write_manifest():
         # Rewritten after every pair, so a run that is stopped keeps what it finished.
         manifest = {"calibration": os.path.basename(args.calibration), "generator": "render_water_set.py",
                     "seed": args.seed, "pairs": [entries[k] for k in jobs if k in entries]}
+        if args.stream is not None:
+            manifest["stream"] = args.stream
         tmp = os.path.join(args.out, "manifest.json.tmp")
         with open(tmp, "w") as f:
             json.dump(manifest, f, indent=1)
@@ -1071,7 +1129,8 @@ def main(argv=None):
         os.replace(tmp, os.path.join(args.out, "manifest.json"))
 
     with concurrent.futures.ThreadPoolExecutor(max_workers=max(1, args.jobs)) as pool:
-        futs = {pool.submit(make_pair, rig, c, i, args.seed, args.out): (c, i) for c, i in jobs
+        futs = {pool.submit(make_pair, rig, c, i, args.seed, args.out, None, args.stream): (c, i)
+                for c, i in jobs
                 if (c, i) not in entries}
         for n, fut in enumerate(concurrent.futures.as_completed(futs), 1):
             c, i = futs[fut]
