@@ -101,8 +101,9 @@ void describe(hal::ParamVisitor& v, EstimatorParams& p) {
            "the pose along it)"});
   v.param("ok_bound_mm", p.ok_bound_mm,
           {"mm", 0.1, 1000.0,
-           "improved mode: an estimate is ok only when its position error bound (the rims' 99 % "
-           "quantile, or 3 sigma of the centroids') is within this"});
+           "improved mode: an estimate is ok only when its position error bound (a sharp rim "
+           "fit's 99 % quantile, or 3 sigma of the centroids' or a loose rim fit's) is within "
+           "this"});
   v.param("ok_bound_deg", p.ok_bound_deg,
           {"deg", 0.01, 180.0,
            "improved mode: an estimate is ok only when its rotation error bound (as ok_bound_mm) "

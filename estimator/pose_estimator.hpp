@@ -53,7 +53,8 @@ struct PoseEstimate {
   std::array<std::array<double, 3>, 2> sphere_ring_hits{};  // each ring's share on colour
   // Improved mode: the pose was refined on the blobs' centroids (all spheres' blobs agree with one
   // rigid marker within the refiner's residual gate), with an error bound from that fit: 3 sigma
-  // of the centroids' (whose shading bias the scatter understates), 99 % of the rims' (below).
+  // of the centroids' (whose shading bias the scatter understates), 99 % of the rims' where they
+  // fit sharply (below).
   // NaN bounds when not refined (faithful mode: the fitness alone, no bound).
   bool refined = false;
   double refine_rms_px = std::numeric_limits<double>::quiet_NaN();
