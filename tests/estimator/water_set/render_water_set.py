@@ -1054,9 +1054,10 @@ def finished_pairs(out_dir, seed, stream, jobs):
         manifest = json.load(f)
     if manifest.get("seed") != seed:
         raise SystemExit("%s: seed %s, not %d; --resume needs the same seed" % (path, manifest.get("seed"), seed))
-    if manifest.get("stream") != stream:
-        raise SystemExit("%s: --stream %s, not %s; --resume needs the same" %
-                         (path, manifest.get("stream"), stream))
+    spec = stream["spec"] if stream else None
+    if manifest.get("stream") != spec:
+        raise SystemExit("%s: rendered with --stream %s, this run with %s; --resume needs the same" %
+                         (path, manifest.get("stream") or "none", spec or "none"))
     index = {}
     for entry in manifest["pairs"]:
         rel = entry.get("left", "")
@@ -1072,10 +1073,10 @@ def finished_pairs(out_dir, seed, stream, jobs):
 def stream_arg(text):
     """`yuyv`, or `mjpg:Q` with a JPEG quality Q from 1 to 100."""
     if text == "yuyv":
-        return {"stream": "yuyv"}
+        return {"stream": "yuyv", "spec": text}
     kind, _, q = text.partition(":")
     if kind == "mjpg" and q.isdigit() and 1 <= int(q) <= 100:
-        return {"stream": "mjpg", "jpeg_quality": int(q)}
+        return {"stream": "mjpg", "jpeg_quality": int(q), "spec": text}
     raise argparse.ArgumentTypeError("%r is neither yuyv nor mjpg:Q with a JPEG quality Q from 1 to 100" % text)
 
 
@@ -1121,7 +1122,7 @@ def main(argv=None):
         manifest = {"calibration": os.path.basename(args.calibration), "generator": "render_water_set.py",
                     "seed": args.seed, "pairs": [entries[k] for k in jobs if k in entries]}
         if args.stream is not None:
-            manifest["stream"] = args.stream
+            manifest["stream"] = args.stream["spec"]
         tmp = os.path.join(args.out, "manifest.json.tmp")
         with open(tmp, "w") as f:
             json.dump(manifest, f, indent=1)
