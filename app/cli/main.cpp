@@ -86,7 +86,7 @@ int main(int argc, char** argv) {
     std::cerr << "rovctl " << command << ": " << e.what() << "\n";
     return kExitUsage;
   } catch (const std::invalid_argument& e) {
-    // A part's constructor rejecting its parameters at start-up (ARCHITECTURE.md, "Errors").
+    // A part's constructor rejecting its parameters at start-up (docs/architecture.md, "Errors").
     std::cerr << "rovctl " << command << ": " << e.what() << "\n";
     return kExitUsage;
   } catch (const std::exception& e) {

@@ -25,7 +25,7 @@
 
 namespace rovctl::app {
 
-// The stages of one tick (ARCHITECTURE.md, "One tick"), timed separately.
+// The stages of one tick (docs/architecture.md, "One tick"), timed separately.
 enum class Stage : std::uint8_t { capture, segment, estimate, control, actuate, telemetry };
 constexpr std::size_t kStageCount = 6;
 // "capture", "segment", ... (config keys and CSV column names).

@@ -1,5 +1,5 @@
-// The application's tick. Stage order as in ARCHITECTURE.md; every failure path ends in a written
-// command (neutral in the safe state), so the thrusters never keep a stale command.
+// The application's tick. Stage order as in docs/architecture.md; every failure path ends in a
+// written command (neutral in the safe state), so the thrusters never keep a stale command.
 #include "app/runtime/vehicle_loop.hpp"
 
 #include <algorithm>
