@@ -178,187 +178,209 @@ MissionOutput Mission::update(const MissionInput& in) {
     started_ = true;
     entered_ = in.now;
   }
-  const bool seen =
-      in.recognised && in.fitness >= p_.min_fitness && in.T_cl_marker.matrix().allFinite();
-  MissionOutput out;
-  Errors err{0.0, 0.0, 0.0, 0.0, 0.0};
-  if (seen) {
+  const Sight s = observe(in);
+  transition(s);
+  return outputs(s);
+}
+
+Mission::Sight Mission::observe(const MissionInput& in) {
+  Sight s{in};
+  s.seen = in.recognised && in.fitness >= p_.min_fitness && in.T_cl_marker.matrix().allFinite();
+  if (s.seen) {
     ++seen_frames_;
     unseen_frames_ = 0;
-    err = errors(in.T_cl_marker);
-    out.errors_valid = true;
-    out.lateral_error_m = err.lateral_m;
-    out.axial_error_m = err.axial_m;
-    out.yaw_error_rad = err.yaw_rad;
+    s.err = errors(in.T_cl_marker);
     have_last_ = true;
-    last_axial_m_ = err.axial_m;
+    last_axial_m_ = s.err.axial_m;
   } else {
     seen_frames_ = 0;
     ++unseen_frames_;
   }
-  const bool full = seen && in.full_view;
-  partial_frames_ = (seen && !full) ? partial_frames_ + 1 : 0;
-  const bool blind_zone = have_last_ && -last_axial_m_ <= p_.dock_blind_distance_m;
+  s.full = s.seen && in.full_view;
+  partial_frames_ = (s.seen && !s.full) ? partial_frames_ + 1 : 0;
+  s.blind_zone = have_last_ && -last_axial_m_ <= p_.dock_blind_distance_m;
   // Outside the blind zone a partial view is no view for docking: the push goes on only on the
   // full one.
-  const bool seen_dock = full || (seen && blind_zone);
+  s.seen_dock = s.full || (s.seen && s.blind_zone);
   // In the blind zone a partial view is steered on only when its rotation is the attitude
   // sensor's: in the sim's occluders scenario a bar left no sphere in both views, the estimator's
   // two-sphere pose was 14-58 deg off, and servoing on it brought the probe in 12.8 mm off the
   // axis. Such a view gets the blind push along the docked axis instead.
-  const bool steer_dock = full || (seen && blind_zone && in.attitude_aided);
-  const bool contact_switch = p_.contact_switch && in.contact;
-  const std::chrono::nanoseconds tick =
-      last_now_.count() >= 0 ? in.now - last_now_ : std::chrono::nanoseconds{0};
+  s.steer_dock = s.full || (s.seen && s.blind_zone && in.attitude_aided);
+  s.contact_switch = p_.contact_switch && in.contact;
+  s.tick = last_now_.count() >= 0 ? in.now - last_now_ : std::chrono::nanoseconds{0};
   last_now_ = in.now;
-  const bool waiting_for_full_view = seen && !seen_dock;
-  if (!waiting_for_full_view) {
+  s.waiting_for_full_view = s.seen && !s.seen_dock;
+  if (!s.waiting_for_full_view) {
     partial_since_ = std::chrono::nanoseconds{-1};
   } else if (partial_since_.count() < 0) {
     partial_since_ = in.now;
   }
-  const double t_state = seconds(in.now - entered_);
-  const bool lost = unseen_frames_ >= p_.lost_frames;
+  s.t_state = seconds(in.now - entered_);
+  s.lost = unseen_frames_ >= p_.lost_frames;
+  return s;
+}
 
+void Mission::transition(const Sight& s) {
   switch (state_) {
     case MissionState::search:
-      if (seen_frames_ >= p_.acquire_frames) {
-        enter(MissionState::approach, in.now, "marker recognised");
-      } else if (p_.search_timeout_s > 0.0 && t_state > p_.search_timeout_s) {
-        search_timed_out_ = true;
-        enter(MissionState::failed, in.now, "search timed out");
-      }
-      break;
+      return from_search(s);
     case MissionState::approach:
-      if (lost) {
-        lost_before_dock(in.now);
-      } else if (t_state > p_.approach_timeout_s) {
-        enter(MissionState::abort, in.now, "approach timed out");
-      } else if (seen && err.lateral_m <= p_.approach_lateral_m &&
-                 std::abs(err.axial_m + p_.standoff_m) <= p_.approach_axial_m &&
-                 std::abs(err.yaw_rad) <= p_.approach_yaw_rad) {
-        enter(MissionState::align, in.now, "stand-off reached");
-      }
-      break;
-    case MissionState::align: {
-      // The hold is judged on the signed errors averaged over about align_average_frames full
-      // views: in the sim's noisy scenario the estimate's frame-to-frame rotation noise (0.8 deg
-      // median) put the probe's lateral error at 7 mm median, 16 mm p90, while the truth was
-      // 3.6 mm and 7.5 mm, and 20 frames in a row under 8 mm took minutes. Each frame must still
-      // be within the dock's abort limits.
-      bool within = false;
-      if (full) {
-        const Eigen::Vector4d e(err.lateral_x_m, err.lateral_y_m, err.axial_m + p_.standoff_m,
-                                err.yaw_rad);
-        align_avg_ = align_avg_valid_
-                         ? Eigen::Vector4d(align_avg_ + (e - align_avg_) / p_.align_average_frames)
-                         : e;
-        align_avg_valid_ = true;
-        within = err.lateral_m <= p_.dock_abort_lateral_m &&
-                 std::abs(err.yaw_rad) <= p_.dock_abort_yaw_rad &&
-                 align_avg_.head<2>().norm() <= p_.align_lateral_m &&
-                 std::abs(align_avg_.z()) <= p_.align_axial_m &&
-                 std::abs(align_avg_.w()) <= p_.align_yaw_rad;
-      }
-      hold_frames_ = within ? hold_frames_ + 1 : 0;
-      if (lost) {
-        lost_before_dock(in.now);
-      } else if (hold_frames_ >= p_.align_hold_frames) {
-        dock_start_back_m_ = p_.standoff_m;
-        enter(MissionState::dock, in.now, "aligned");
-      } else if (t_state > p_.align_timeout_s) {
-        enter(MissionState::abort, in.now, "align timed out");
-      }
-      break;
-    }
-    case MissionState::dock: {
-      const bool vision_contact = p_.contact_from_vision && seen_dock &&
-                                  err.axial_m >= p_.vision_contact_depth_m &&
-                                  err.lateral_m <= p_.dock_abort_lateral_m;
-      contact_frames_ = (contact_switch || vision_contact) ? contact_frames_ + 1 : 0;
-      if (steer_dock) {
-        blind_since_ = std::chrono::nanoseconds{-1};
-      } else if (blind_zone && blind_since_.count() < 0) {
-        blind_since_ = in.now;
-      }
-      const bool lateral_off = steer_dock && err.lateral_m > p_.dock_abort_lateral_m;
-      const bool yaw_off = steer_dock && std::abs(err.yaw_rad) > p_.dock_abort_yaw_rad;
-      if (steer_dock) dock_off_frames_ = (lateral_off || yaw_off) ? dock_off_frames_ + 1 : 0;
-      const bool off_limits = dock_off_frames_ >= p_.dock_abort_frames;
-      if (contact_frames_ >= p_.contact_frames) {
-        enter(MissionState::docked, in.now, vision_contact ? "contact (vision)" : "contact");
-      } else if (off_limits && lateral_off) {
-        enter(MissionState::abort, in.now, "lateral error limit");
-      } else if (off_limits && yaw_off) {
-        enter(MissionState::abort, in.now, "yaw error limit");
-      } else if (!seen_dock && !blind_zone && lost) {
-        enter(MissionState::abort, in.now, "marker lost");
-      } else if (waiting_for_full_view &&
-                 seconds(in.now - partial_since_) > p_.dock_partial_timeout_s) {
-        enter(MissionState::abort, in.now, "partial view while docking");
-      } else if (!steer_dock && blind_zone &&
-                 seconds(in.now - blind_since_) > p_.dock_blind_timeout_s) {
-        enter(MissionState::abort, in.now, "no contact after blind push");
-      } else if (t_state > p_.dock_timeout_s) {
-        enter(MissionState::abort, in.now, "dock timed out");
-      }
-      break;
-    }
+      return from_approach(s);
+    case MissionState::align:
+      return from_align(s);
+    case MissionState::dock:
+      return from_dock(s);
     case MissionState::abort:
-      if (t_state >= (back_off_ ? p_.abort_backoff_s : 0.0)) {
-        backed_off_ = true;
-        if (!final_abort_)
-          enter(MissionState::search, in.now, back_off_ ? "backed off" : "searching from here");
-      }
-      break;
+      return from_abort(s);
     case MissionState::charging:
-      charging(in, seen_dock, err);
-      break;
-    case MissionState::undock: {
-      const RechargeParams& r = p_.recharge;
-      if (seen_dock && err.axial_m <= -(p_.standoff_m - p_.approach_axial_m)) {
-        if (abort_after_undock_) {
-          final_abort_ = true;
-          enter(MissionState::abort, in.now, "undocked after the re-seats ran out");
-        } else {
-          enter(MissionState::departed, in.now, "clear of the station, marker in view");
-        }
-      } else if (t_state > r.undock_timeout_s) {
-        enter(MissionState::failed, in.now, "undock timed out");
-      }
-      break;
-    }
+      return from_charging(s);
+    case MissionState::undock:
+      return from_undock(s);
     case MissionState::docked:
+      return from_docked(s);
     case MissionState::failed:
     case MissionState::departed:
-      break;
+      return;
+  }
+}
+
+void Mission::from_search(const Sight& s) {
+  if (seen_frames_ >= p_.acquire_frames) {
+    enter(MissionState::approach, s.in.now, "marker recognised");
+  } else if (p_.search_timeout_s > 0.0 && s.t_state > p_.search_timeout_s) {
+    search_timed_out_ = true;
+    enter(MissionState::failed, s.in.now, "search timed out");
+  }
+}
+
+void Mission::from_approach(const Sight& s) {
+  const Errors& err = s.err;
+  if (s.lost) {
+    lost_before_dock(s.in.now);
+  } else if (s.t_state > p_.approach_timeout_s) {
+    enter(MissionState::abort, s.in.now, "approach timed out");
+  } else if (s.seen && err.lateral_m <= p_.approach_lateral_m &&
+             std::abs(err.axial_m + p_.standoff_m) <= p_.approach_axial_m &&
+             std::abs(err.yaw_rad) <= p_.approach_yaw_rad) {
+    enter(MissionState::align, s.in.now, "stand-off reached");
+  }
+}
+
+void Mission::from_align(const Sight& s) {
+  // The hold is judged on the signed errors averaged over about align_average_frames full
+  // views: in the sim's noisy scenario the estimate's frame-to-frame rotation noise (0.8 deg
+  // median) put the probe's lateral error at 7 mm median, 16 mm p90, while the truth was
+  // 3.6 mm and 7.5 mm, and 20 frames in a row under 8 mm took minutes. Each frame must still
+  // be within the dock's abort limits.
+  const Errors& err = s.err;
+  bool within = false;
+  if (s.full) {
+    const Eigen::Vector4d e(err.lateral_x_m, err.lateral_y_m, err.axial_m + p_.standoff_m,
+                            err.yaw_rad);
+    align_avg_ = align_avg_valid_
+                     ? Eigen::Vector4d(align_avg_ + (e - align_avg_) / p_.align_average_frames)
+                     : e;
+    align_avg_valid_ = true;
+    within = err.lateral_m <= p_.dock_abort_lateral_m &&
+             std::abs(err.yaw_rad) <= p_.dock_abort_yaw_rad &&
+             align_avg_.head<2>().norm() <= p_.align_lateral_m &&
+             std::abs(align_avg_.z()) <= p_.align_axial_m &&
+             std::abs(align_avg_.w()) <= p_.align_yaw_rad;
+  }
+  hold_frames_ = within ? hold_frames_ + 1 : 0;
+  if (s.lost) {
+    lost_before_dock(s.in.now);
+  } else if (hold_frames_ >= p_.align_hold_frames) {
+    dock_start_back_m_ = p_.standoff_m;
+    enter(MissionState::dock, s.in.now, "aligned");
+  } else if (s.t_state > p_.align_timeout_s) {
+    enter(MissionState::abort, s.in.now, "align timed out");
+  }
+}
+
+void Mission::from_dock(const Sight& s) {
+  const Errors& err = s.err;
+  const std::chrono::nanoseconds now = s.in.now;
+  const bool vision_contact = p_.contact_from_vision && s.seen_dock &&
+                              err.axial_m >= p_.vision_contact_depth_m &&
+                              err.lateral_m <= p_.dock_abort_lateral_m;
+  contact_frames_ = (s.contact_switch || vision_contact) ? contact_frames_ + 1 : 0;
+  if (s.steer_dock) {
+    blind_since_ = std::chrono::nanoseconds{-1};
+  } else if (s.blind_zone && blind_since_.count() < 0) {
+    blind_since_ = now;
+  }
+  const bool lateral_off = s.steer_dock && err.lateral_m > p_.dock_abort_lateral_m;
+  const bool yaw_off = s.steer_dock && std::abs(err.yaw_rad) > p_.dock_abort_yaw_rad;
+  if (s.steer_dock) dock_off_frames_ = (lateral_off || yaw_off) ? dock_off_frames_ + 1 : 0;
+  const bool off_limits = dock_off_frames_ >= p_.dock_abort_frames;
+  if (contact_frames_ >= p_.contact_frames) {
+    enter(MissionState::docked, now, vision_contact ? "contact (vision)" : "contact");
+  } else if (off_limits && lateral_off) {
+    enter(MissionState::abort, now, "lateral error limit");
+  } else if (off_limits && yaw_off) {
+    enter(MissionState::abort, now, "yaw error limit");
+  } else if (!s.seen_dock && !s.blind_zone && s.lost) {
+    enter(MissionState::abort, now, "marker lost");
+  } else if (s.waiting_for_full_view && seconds(now - partial_since_) > p_.dock_partial_timeout_s) {
+    enter(MissionState::abort, now, "partial view while docking");
+  } else if (!s.steer_dock && s.blind_zone &&
+             seconds(now - blind_since_) > p_.dock_blind_timeout_s) {
+    enter(MissionState::abort, now, "no contact after blind push");
+  } else if (s.t_state > p_.dock_timeout_s) {
+    enter(MissionState::abort, now, "dock timed out");
+  } else {
+    return;
   }
   // The recharging mission does not stop at DOCKED: the hold starts in the same tick, so the
   // thrusters never let go of the seat.
-  if (recharge_ && state_ == MissionState::docked) {
-    enter(MissionState::charging, in.now, charging_started_ ? "re-seated" : "seated: charging");
-  }
+  if (state_ == MissionState::docked) from_docked(s);
+}
 
-  // Outputs of the state we are in after this tick's transition.
+void Mission::from_docked(const Sight& s) {
+  if (recharge_) {
+    enter(MissionState::charging, s.in.now, charging_started_ ? "re-seated" : "seated: charging");
+  }
+}
+
+void Mission::from_abort(const Sight& s) {
+  if (s.t_state >= (back_off_ ? p_.abort_backoff_s : 0.0)) {
+    backed_off_ = true;
+    if (!final_abort_)
+      enter(MissionState::search, s.in.now, back_off_ ? "backed off" : "searching from here");
+  }
+}
+
+void Mission::from_undock(const Sight& s) {
+  if (s.seen_dock && s.err.axial_m <= -(p_.standoff_m - p_.approach_axial_m)) {
+    if (abort_after_undock_) {
+      final_abort_ = true;
+      enter(MissionState::abort, s.in.now, "undocked after the re-seats ran out");
+    } else {
+      enter(MissionState::departed, s.in.now, "clear of the station, marker in view");
+    }
+  } else if (s.t_state > p_.recharge.undock_timeout_s) {
+    enter(MissionState::failed, s.in.now, "undock timed out");
+  }
+}
+
+// Outputs of the state we are in after this tick's transition.
+MissionOutput Mission::outputs(const Sight& s) {
+  MissionOutput out;
+  if (s.seen) {
+    out.errors_valid = true;
+    out.lateral_error_m = s.err.lateral_m;
+    out.axial_error_m = s.err.axial_m;
+    out.yaw_error_rad = s.err.yaw_rad;
+  }
   out.state = state_;
   out.keep_axial_trim = std::exchange(keep_axial_trim_, false);
   out.restore_axial_trim = std::exchange(restore_axial_trim_, false);
   out.hold_axial_trim = state_ == MissionState::charging;
   switch (state_) {
     case MissionState::search:
-      out.use_override = true;
-      // A marker found is confirmed over acquire_frames while the scan goes on: the scan turns
-      // toward it meanwhile rather than carrying it out of view (in murky water the scan's yaw
-      // rate took a faint marker found 27 deg to port out of view 1.8 s into APPROACH). Lost
-      // again, the scan turns the configured way: a scan turning back toward the side it was lost
-      // on may have to turn against the current, which its moment cannot (in the recharge sim it
-      // stalled for 28 s; with the current, the scan came round to the marker in 5.5 s).
-      out.wrench_override_body[5] = p_.search_yaw_moment_nm;
-      if (seen) {
-        const Eigen::Vector3d marker_body_m = T_body_cl_ * in.T_cl_marker.translation();
-        out.wrench_override_body[5] =
-            std::copysign(p_.search_yaw_moment_nm, marker_body_m.y() >= 0.0 ? 1.0 : -1.0);
-      }
+      search_outputs(s, out);
       break;
     case MissionState::approach:
     case MissionState::align:
@@ -366,31 +388,11 @@ MissionOutput Mission::update(const MissionInput& in) {
       // Turning to the axis's heading from far off the axis swings the marker out of view
       // (recharge trial 33: four aborts, FAILED); ALIGN, at the stand-off, turns the rest.
       if (state_ == MissionState::approach) out.max_bearing_rad = p_.approach_view_bearing_rad;
-      out.servo_active = seen;
-      out.use_override = !seen;  // brief loss: hold (feed-forward only)
+      servo_when(s.seen, out);  // brief loss: hold (feed-forward only)
       break;
-    case MissionState::dock: {
-      // On a partial view the push waits where it is until the view is whole again or
-      // dock_partial_timeout_s runs out, held by the servo only when the pose's rotation comes
-      // from the attitude sensor, else by the hold (the trim against the current): the
-      // estimator's own pose on two spheres has no error bound and its yaw was 5-40 deg off in
-      // the sim's occluders scenario; servoing on it 0.4 m out turned the vehicle past the yaw
-      // limit, and holding alone let the current carry it 30 mm off the axis in 2 s. In the blind
-      // zone the push goes on: on the servo when the view is full or aided, else blind.
-      if (seen_dock) dock_pushed_ += tick;
-      const double back = std::max(dock_start_back_m_ - p_.dock_speed_mps * seconds(dock_pushed_),
-                                   -p_.dock_overshoot_m);
-      out.T_cl_marker_desired = offset_along_docking_axis(T_docked_, back);
-      out.servo_active = full || (seen && in.attitude_aided);  // steer_dock, and the aided wait
-      out.use_override = !out.servo_active;
-      // A re-seat keeps pressing while it slides back in.
-      if (charging_started_)
-        out.push_body.head<3>() = docked_axis_body_ * p_.recharge.charge_push_n;
-      if (!steer_dock && blind_since_.count() >= 0) {
-        out.wrench_override_body.head<3>() = docked_axis_body_ * p_.dock_blind_push_n;
-      }
+    case MissionState::dock:
+      dock_outputs(s, out);
       break;
-    }
     case MissionState::abort:
       out.use_override = true;
       if (final_abort_ && backed_off_) {
@@ -403,28 +405,17 @@ MissionOutput Mission::update(const MissionInput& in) {
       // Lateral and yaw on the servo; along the axis the set-point follows the probe, so only the
       // push (and the integral's trim carried from the dock) presses it into the seat.
       out.T_cl_marker_desired =
-          seen_dock ? offset_along_docking_axis(T_docked_, -err.axial_m) : T_docked_;
-      out.servo_active = seen_dock;
-      out.use_override = !seen_dock;
+          s.seen_dock ? offset_along_docking_axis(T_docked_, -s.err.axial_m) : T_docked_;
+      servo_when(s.seen_dock, out);
       out.push_body.head<3>() = docked_axis_body_ * p_.recharge.charge_push_n;
       break;
-    case MissionState::undock: {
-      const double back =
-          std::min(undock_start_back_m_ + p_.recharge.undock_speed_mps * seconds(in.now - entered_),
-                   p_.standoff_m);
-      out.T_cl_marker_desired = offset_along_docking_axis(T_docked_, back);
-      out.servo_active = seen_dock;
-      out.use_override = !seen_dock;
-      if (!seen_dock) {
-        out.wrench_override_body.head<3>() = -docked_axis_body_ * p_.recharge.undock_push_n;
-      }
+    case MissionState::undock:
+      undock_outputs(s, out);
       break;
-    }
     case MissionState::departed:
       if (departed_hold_) {
         out.T_cl_marker_desired = T_standoff_;
-        out.servo_active = seen;
-        out.use_override = !seen;
+        servo_when(s.seen, out);
       } else {
         out.thrusters_enabled = false;
       }
@@ -442,7 +433,63 @@ MissionOutput Mission::update(const MissionInput& in) {
   return out;
 }
 
-void Mission::charging(const MissionInput& in, bool seen_dock, const Errors& err) {
+void Mission::servo_when(bool in_view, MissionOutput& out) {
+  out.servo_active = in_view;
+  out.use_override = !in_view;
+}
+
+void Mission::search_outputs(const Sight& s, MissionOutput& out) const {
+  out.use_override = true;
+  // A marker found is confirmed over acquire_frames while the scan goes on: the scan turns
+  // toward it meanwhile rather than carrying it out of view (in murky water the scan's yaw
+  // rate took a faint marker found 27 deg to port out of view 1.8 s into APPROACH). Lost
+  // again, the scan turns the configured way: a scan turning back toward the side it was lost
+  // on may have to turn against the current, which its moment cannot (in the recharge sim it
+  // stalled for 28 s; with the current, the scan came round to the marker in 5.5 s).
+  out.wrench_override_body[5] = p_.search_yaw_moment_nm;
+  if (s.seen) {
+    const Eigen::Vector3d marker_body_m = T_body_cl_ * s.in.T_cl_marker.translation();
+    out.wrench_override_body[5] =
+        std::copysign(p_.search_yaw_moment_nm, marker_body_m.y() >= 0.0 ? 1.0 : -1.0);
+  }
+}
+
+void Mission::dock_outputs(const Sight& s, MissionOutput& out) {
+  // On a partial view the push waits where it is until the view is whole again or
+  // dock_partial_timeout_s runs out, held by the servo only when the pose's rotation comes
+  // from the attitude sensor, else by the hold (the trim against the current): the
+  // estimator's own pose on two spheres has no error bound and its yaw was 5-40 deg off in
+  // the sim's occluders scenario; servoing on it 0.4 m out turned the vehicle past the yaw
+  // limit, and holding alone let the current carry it 30 mm off the axis in 2 s. In the blind
+  // zone the push goes on: on the servo when the view is full or aided, else blind.
+  if (s.seen_dock) dock_pushed_ += s.tick;
+  const double back = std::max(dock_start_back_m_ - p_.dock_speed_mps * seconds(dock_pushed_),
+                               -p_.dock_overshoot_m);
+  out.T_cl_marker_desired = offset_along_docking_axis(T_docked_, back);
+  // steer_dock, and the aided wait
+  servo_when(s.full || (s.seen && s.in.attitude_aided), out);
+  // A re-seat keeps pressing while it slides back in.
+  if (charging_started_) out.push_body.head<3>() = docked_axis_body_ * p_.recharge.charge_push_n;
+  if (!s.steer_dock && blind_since_.count() >= 0) {
+    out.wrench_override_body.head<3>() = docked_axis_body_ * p_.dock_blind_push_n;
+  }
+}
+
+void Mission::undock_outputs(const Sight& s, MissionOutput& out) const {
+  const double back =
+      std::min(undock_start_back_m_ + p_.recharge.undock_speed_mps * seconds(s.in.now - entered_),
+               p_.standoff_m);
+  out.T_cl_marker_desired = offset_along_docking_axis(T_docked_, back);
+  servo_when(s.seen_dock, out);
+  if (!s.seen_dock) {
+    out.wrench_override_body.head<3>() = -docked_axis_body_ * p_.recharge.undock_push_n;
+  }
+}
+
+void Mission::from_charging(const Sight& s) {
+  const MissionInput& in = s.in;
+  const bool seen_dock = s.seen_dock;
+  const Errors& err = s.err;
   const RechargeParams& r = p_.recharge;
   const bool vision_out = seen_dock && err.axial_m < -r.vision_unseat_m;
   const bool contact_lost = p_.contact_switch && !in.contact;

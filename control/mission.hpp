@@ -153,11 +153,42 @@ class Mission {
     double lateral_m, axial_m, yaw_rad;
     double lateral_x_m, lateral_y_m;  // the lateral error's components in the marker frame
   };
+  // What this tick's input says, worked out once for the transitions and the outputs.
+  struct Sight {
+    const MissionInput& in;
+    bool seen = false;        // recognised, fit enough, finite
+    bool full = false;        // ... on the full view
+    bool blind_zone = false;  // the probe is within dock_blind_distance_m of the socket
+    bool seen_dock = false;   // seen well enough to push the dock on
+    bool steer_dock = false;  // ... and to steer it
+    bool contact_switch = false;
+    bool waiting_for_full_view = false;
+    bool lost = false;                 // unseen for lost_frames
+    double t_state = 0.0;              // s in the current state
+    std::chrono::nanoseconds tick{0};  // since the last update
+    Errors err{0.0, 0.0, 0.0, 0.0, 0.0};
+  };
   Errors errors(const Eigen::Isometry3d& T_cl_marker) const;
+  Sight observe(const MissionInput& in);
+  // One transition function per state (mission_state_table() says what each does), then the
+  // outputs of the state the tick ends in.
+  void transition(const Sight& s);
+  void from_search(const Sight& s);
+  void from_approach(const Sight& s);
+  void from_align(const Sight& s);
+  void from_dock(const Sight& s);
+  void from_docked(const Sight& s);
+  void from_abort(const Sight& s);
+  void from_charging(const Sight& s);
+  void from_undock(const Sight& s);
+  MissionOutput outputs(const Sight& s);
+  static void servo_when(bool in_view, MissionOutput& out);
+  void search_outputs(const Sight& s, MissionOutput& out) const;
+  void dock_outputs(const Sight& s, MissionOutput& out);
+  void undock_outputs(const Sight& s, MissionOutput& out) const;
   void enter(MissionState to, std::chrono::nanoseconds now, const char* reason);
   // APPROACH or ALIGN lost the marker: an abort that searches at once, without backing off.
   void lost_before_dock(std::chrono::nanoseconds now);
-  void charging(const MissionInput& in, bool seen_dock, const Errors& err);
   void start_undock(std::chrono::nanoseconds now, const char* reason);
   void push_event(const MissionEvent& e);
 

@@ -9,7 +9,7 @@ packages=(build-essential cmake ninja-build pkg-config git
   libgtest-dev libgmock-dev libbenchmark-dev
   python3 python3-pymodbus python3-serial python3-serial-asyncio socat clang-format libclang-rt-14-dev
   povray python3-opencv python3-numpy
-  libcpp-httplib-dev chromium nodejs)
+  libcpp-httplib-dev chromium nodejs universal-ctags)
 # npm comes with some nodejs builds (NodeSource's) and is its own package in Debian's.
 command -v npm >/dev/null 2>&1 || packages+=(npm)
 

@@ -248,18 +248,36 @@ FieldSplit field_split(const CliArgs& args) {
   return split;
 }
 
-// What a band of a condition (by range, or by a manifest number) reports, after its edges.
-JsonWriter& band_fields(JsonWriter& json, const ConditionScore& s) {
-  return json.field("pairs", s.pairs)
-      .field("success", s.success)
-      .field("success_rate", static_cast<double>(s.success) / s.pairs)
-      .field("false_ok", s.false_ok)
-      .field("partial", s.partial)
+// A condition's score as JSON fields, the one writer for every row: a whole condition's row
+// (`conditions`) or a band of one (`by_range`, `by_field`: after its edges), which leaves out
+// what only the whole condition has (ok, the false-ok rate, p95s, the median over every pair,
+// the time). A rate over no pairs is null: no data, not a rate of 0.
+enum class ScoreRow { condition, band };
+JsonWriter& score_fields(JsonWriter& json, const ConditionScore& s, ScoreRow row) {
+  const bool whole = row == ScoreRow::condition;
+  const auto rate = [&s](int n) {
+    return s.pairs > 0 ? static_cast<double>(n) / s.pairs
+                       : std::numeric_limits<double>::quiet_NaN();
+  };
+  json.field("pairs", s.pairs);
+  if (whole) json.field("ok", s.ok);
+  json.field("success", s.success)
+      .field("success_rate", rate(s.success))
+      .field("false_ok", s.false_ok);
+  if (whole) json.field("false_ok_rate", rate(s.false_ok));
+  json.field("partial", s.partial)
       .field("partial_view", s.partial_view)
       .field("not_refined", s.not_refined)
       .field("bound_over_limit", s.bound_over_limit)
-      .field("translation_mm_median", s.translation_mm_median)
-      .field("rotation_deg_median", s.rotation_deg_median);
+      .field("translation_mm_median", s.translation_mm_median);
+  if (whole) json.field("translation_mm_p95", s.translation_mm_p95);
+  json.field("rotation_deg_median", s.rotation_deg_median);
+  if (whole) {
+    json.field("rotation_deg_p95", s.rotation_deg_p95)
+        .field("translation_mm_median_all", s.translation_mm_median_all)
+        .field("ms_per_frame_p95", s.ms_per_frame_p95);
+  }
+  return json;
 }
 
 // `rovctl bench --set DIR`: the estimator scored on an independent validation set, per condition.
@@ -317,25 +335,8 @@ int bench_set(const AppConfig& config, const hal::StereoRig& rig, const std::str
         .field("right_rotation_deg", kRightRotationDeg)
         .begin_array("conditions");
     for (const ConditionScore& s : scores) {
-      json.begin_object()
-          .field("condition", s.condition)
-          .field("pairs", s.pairs)
-          .field("ok", s.ok)
-          .field("success", s.success)
-          .field("success_rate", s.pairs > 0 ? static_cast<double>(s.success) / s.pairs : 0.0)
-          .field("false_ok", s.false_ok)
-          .field("false_ok_rate", s.pairs > 0 ? static_cast<double>(s.false_ok) / s.pairs : 0.0)
-          .field("partial", s.partial)
-          .field("partial_view", s.partial_view)
-          .field("not_refined", s.not_refined)
-          .field("bound_over_limit", s.bound_over_limit)
-          .field("translation_mm_median", s.translation_mm_median)
-          .field("translation_mm_p95", s.translation_mm_p95)
-          .field("rotation_deg_median", s.rotation_deg_median)
-          .field("rotation_deg_p95", s.rotation_deg_p95)
-          .field("translation_mm_median_all", s.translation_mm_median_all)
-          .field("ms_per_frame_p95", s.ms_per_frame_p95)
-          .end_object();
+      json.begin_object().field("condition", s.condition);
+      score_fields(json, s, ScoreRow::condition).end_object();
     }
     json.end_array().begin_array("by_range");
     for (const ConditionScore& s : by_range) {
@@ -343,7 +344,7 @@ int bench_set(const AppConfig& config, const hal::StereoRig& rig, const std::str
           .field("condition", s.condition)
           .field("range_from_m", s.range_from_m)
           .field("range_to_m", s.range_to_m);  // null: no upper edge
-      band_fields(json, s).end_object();
+      score_fields(json, s, ScoreRow::band).end_object();
     }
     json.end_array();
     if (!split.field.empty()) {
@@ -355,7 +356,7 @@ int bench_set(const AppConfig& config, const hal::StereoRig& rig, const std::str
             .field("field", b.field)
             .field("from", b.from)  // null: no lower edge
             .field("to", b.to);     // null: no upper edge
-        band_fields(json, s).end_object();
+        score_fields(json, s, ScoreRow::band).end_object();
       }
       json.end_array();
     }

@@ -9,15 +9,10 @@
 #include <sstream>
 
 #include "app/runtime/errors.hpp"
+#include "hal/primitives/number_format.hpp"
 
 namespace rovctl::app {
 namespace {
-
-std::string format_number(double v) {
-  std::ostringstream s;
-  s << v;
-  return s.str();
-}
 
 class YamlLoader final : public hal::ParamVisitor {
  public:
@@ -187,8 +182,8 @@ class YamlLoader final : public hal::ParamVisitor {
     const double d = static_cast<double>(v);
     if (!std::isfinite(d) || d < m.min || d > m.max) {
       fail(n, key,
-           format_number(d) + " is out of range [" + format_number(m.min) + ", " +
-               format_number(m.max) + "] " + std::string(m.unit));
+           hal::format_number(d) + " is out of range [" + hal::format_number(m.min) + ", " +
+               hal::format_number(m.max) + "] " + std::string(m.unit));
     }
   }
 
@@ -232,7 +227,7 @@ class DocVisitor final : public hal::ParamVisitor {
     body(inner);
   }
   void param(std::string_view key, double& value, const hal::ParamMeta& m) override {
-    row(key, "number", m, format_number(value));
+    row(key, "number", m, hal::format_number(value));
   }
   void param(std::string_view key, int& value, const hal::ParamMeta& m) override {
     row(key, "integer", m, std::to_string(value));
@@ -243,8 +238,8 @@ class DocVisitor final : public hal::ParamVisitor {
   }
   void param(std::string_view key, Eigen::Vector3d& v, const hal::ParamMeta& m) override {
     row(key, "[x, y, z]", m,
-        "[" + format_number(v.x()) + ", " + format_number(v.y()) + ", " + format_number(v.z()) +
-            "]");
+        "[" + hal::format_number(v.x()) + ", " + hal::format_number(v.y()) + ", " +
+            hal::format_number(v.z()) + "]");
   }
   void param(std::string_view key, std::string& value, std::string_view doc,
              const std::vector<std::string>& choices, bool required) override {
@@ -274,7 +269,7 @@ class DocVisitor final : public hal::ParamVisitor {
   void row(std::string_view key, const char* type, const hal::ParamMeta& m,
            const std::string& def) {
     out_ << "| `" << path_of(key) << "` | " << type << " | " << m.unit << " | "
-         << format_number(m.min) << " .. " << format_number(m.max) << " | "
+         << hal::format_number(m.min) << " .. " << hal::format_number(m.max) << " | "
          << (m.required ? "(required)" : def) << " | " << m.doc << " |\n";
   }
   std::string path_of(std::string_view key) const {

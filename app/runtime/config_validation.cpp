@@ -3,7 +3,6 @@
 
 #include <Eigen/SVD>
 #include <cmath>
-#include <sstream>
 #include <stdexcept>
 
 #include "app/runtime/app_config.hpp"
@@ -12,15 +11,10 @@
 #include "drivers/mavlink/ardusub_rc_override_map.hpp"
 #include "drivers/mavlink/mavlink_link.hpp"
 #include "estimator/stereo_calibration.hpp"
+#include "hal/primitives/number_format.hpp"
 
 namespace rovctl::app {
 namespace {
-
-std::string number(double v) {
-  std::ostringstream s;
-  s << v;
-  return s.str();
-}
 
 // The parent of a dotted key path: "a.b[2].c" -> "a.b[2]" -> "a.b" -> "a" -> "".
 std::string parent_of(const std::string& key) {
@@ -62,9 +56,9 @@ void check_thrusters(const AppConfig& config) {
     std::string names;
     for (const int a : axes) names += (names.empty() ? "" : ", ") + std::string(kAxisNames[a]);
     throw ConfigError(where + ": the thrusters cannot push the servo's axes (" + names +
-                      ") independently: singular value ratio " + number(ratio) +
+                      ") independently: singular value ratio " + hal::format_number(ratio) +
                       " is below validation.thruster_min_singular_ratio " +
-                      number(config.validation.thruster_min_singular_ratio));
+                      hal::format_number(config.validation.thruster_min_singular_ratio));
   }
 }
 
@@ -90,9 +84,9 @@ void check_marker(const AppConfig& config) {
                          spheres[i].radius_m - spheres[j].radius_m;
       if (gap < lim.marker_min_gap_m) {
         throw ConfigError(config_location(config, key(j, "centre_m")) + ": the " + spheres[j].name +
-                          " and " + spheres[i].name + " spheres are " + number(gap) +
+                          " and " + spheres[i].name + " spheres are " + hal::format_number(gap) +
                           " m apart surface to surface, below " + "validation.marker_min_gap_m " +
-                          number(lim.marker_min_gap_m) + " m");
+                          hal::format_number(lim.marker_min_gap_m) + " m");
       }
     }
   }
@@ -111,9 +105,10 @@ void check_marker(const AppConfig& config) {
   }
   if (worst_height < lim.marker_min_height_m) {
     throw ConfigError(config_location(config, key(worst, "centre_m")) + ": the " +
-                      spheres[worst].name + " sphere is " + number(worst_height) +
+                      spheres[worst].name + " sphere is " + hal::format_number(worst_height) +
                       " m from the line through the other two, below " +
-                      "validation.marker_min_height_m " + number(lim.marker_min_height_m) +
+                      "validation.marker_min_height_m " +
+                      hal::format_number(lim.marker_min_height_m) +
                       " m: a rotation about that line could not be seen");
   }
 }
@@ -151,9 +146,9 @@ void check_camera(const hal::CameraModel& c, const std::string& file, const char
     throw ConfigError(calibration_location(file, key) + ": " + what);
   };
   if (!(c.cx_px >= 0 && c.cx_px <= c.width_px && c.cy_px >= 0 && c.cy_px <= c.height_px)) {
-    fail(k_key, "principal point (" + number(c.cx_px) + ", " + number(c.cy_px) +
-                    ") px lies outside the " + std::to_string(c.width_px) + "x" +
-                    std::to_string(c.height_px) + " image");
+    fail(k_key, "principal point (" + hal::format_number(c.cx_px) + ", " +
+                    hal::format_number(c.cy_px) + ") px lies outside the " +
+                    std::to_string(c.width_px) + "x" + std::to_string(c.height_px) + " image");
   }
   const double fov_h = 2.0 * std::atan(0.5 * c.width_px / c.fx_px) * 180.0 / M_PI;
   const double fov_v = 2.0 * std::atan(0.5 * c.height_px / c.fy_px) * 180.0 / M_PI;
@@ -163,16 +158,17 @@ void check_camera(const hal::CameraModel& c, const std::string& file, const char
   } fields_of_view[] = {{"horizontal", fov_h}, {"vertical", fov_v}};
   for (const auto& fov : fields_of_view) {
     if (!(fov.deg >= lim.fov_min_deg && fov.deg <= lim.fov_max_deg)) {
-      fail(k_key, std::string(fov.name) + " field of view " + number(fov.deg) +
+      fail(k_key, std::string(fov.name) + " field of view " + hal::format_number(fov.deg) +
                       " deg is outside validation.fov_min_deg .. fov_max_deg (" +
-                      number(lim.fov_min_deg) + " .. " + number(lim.fov_max_deg) +
+                      hal::format_number(lim.fov_min_deg) + " .. " +
+                      hal::format_number(lim.fov_max_deg) +
                       " deg): check fx, fy against the image size");
     }
   }
   if (!(std::abs(c.fx_px / c.fy_px - 1.0) <= lim.max_aspect_deviation)) {
-    fail(k_key, "fx / fy = " + number(c.fx_px / c.fy_px) +
+    fail(k_key, "fx / fy = " + hal::format_number(c.fx_px / c.fy_px) +
                     " differs from 1 by more than validation.max_aspect_deviation " +
-                    number(lim.max_aspect_deviation));
+                    hal::format_number(lim.max_aspect_deviation));
   }
   const struct {
     const char* name;
@@ -186,8 +182,9 @@ void check_camera(const hal::CameraModel& c, const std::string& file, const char
                       {"p2", c.p2, lim.max_abs_tangential, "max_abs_tangential"}};
   for (const auto& k : coefficients) {
     if (!(std::abs(k.value) <= k.limit)) {
-      fail(d_key, std::string(k.name) + " = " + number(k.value) + " is beyond validation." +
-                      k.limit_key + " (|" + k.name + "| <= " + number(k.limit) + ")");
+      fail(d_key, std::string(k.name) + " = " + hal::format_number(k.value) +
+                      " is beyond validation." + k.limit_key + " (|" + k.name +
+                      "| <= " + hal::format_number(k.limit) + ")");
     }
   }
 }
@@ -298,16 +295,18 @@ void validate_stereo_rig(const hal::StereoRig& rig, const std::string& file,
   check_camera(rig.right, file, "K2", "D2", lim);
   const double baseline = rig.baseline_m();
   if (!(baseline >= lim.baseline_min_m && baseline <= lim.baseline_max_m)) {
-    throw ConfigError(calibration_location(file, "T") + ": baseline " + number(baseline) +
+    throw ConfigError(calibration_location(file, "T") + ": baseline " +
+                      hal::format_number(baseline) +
                       " m is outside validation.baseline_min_m .. baseline_max_m (" +
-                      number(lim.baseline_min_m) + " .. " + number(lim.baseline_max_m) +
-                      " m; T is in metres)");
+                      hal::format_number(lim.baseline_min_m) + " .. " +
+                      hal::format_number(lim.baseline_max_m) + " m; T is in metres)");
   }
   const double angle_deg = Eigen::AngleAxisd(rig.T_cr_cl.linear()).angle() * 180.0 / M_PI;
   if (!(angle_deg <= lim.max_rig_rotation_deg)) {
     throw ConfigError(calibration_location(file, "R") + ": the cameras are turned " +
-                      number(angle_deg) + " deg from each other, beyond " +
-                      "validation.max_rig_rotation_deg " + number(lim.max_rig_rotation_deg) +
+                      hal::format_number(angle_deg) + " deg from each other, beyond " +
+                      "validation.max_rig_rotation_deg " +
+                      hal::format_number(lim.max_rig_rotation_deg) +
                       " deg: they would not see the marker together");
   }
 }

@@ -101,6 +101,53 @@ class VehicleLoop {
   std::uint64_t dropped_events() const { return dropped_events_; }
 
  private:
+  // What one tick's stages hand each other, on the tick's stack (no heap).
+  struct TickState {
+    explicit TickState(const TickInfo& i) : info(i), now(i.deadline) {}
+    const TickInfo& info;
+    std::chrono::nanoseconds now;
+    std::uint32_t flags = 0;  // telemetry_flag bits found on the way
+    hal::GrabStatus grab = hal::GrabStatus::ok;
+    bool have_images = false;
+    bool seen = false;           // a recognised, finite estimate this tick
+    bool have_readings = false;  // the sensors answered
+    bool attitude = false;       // ... with a usable attitude
+    bool levelled = false;       // the IMU levels roll and pitch this tick
+    Eigen::Vector2d level_nm = Eigen::Vector2d::Zero();
+    bool backing_out = false;  // the failsafe backs out since an earlier tick
+    control::MissionInput in;
+    control::MissionOutput out;
+    control::Wrench wrench = control::Wrench::Zero();
+    control::SafeAction action = control::SafeAction::none;
+  };
+
+  // The stages, in ARCHITECTURE.md's order; each times itself against its budget.
+  void capture(TickState& t);
+  void segment(TickState& t);
+  void estimate(TickState& t);
+  void control(TickState& t);
+  void actuate(TickState& t);
+  void telemetry(TickState& t);
+  // Whether the run goes on after this tick (a finished mission settles for a while first).
+  bool keep_running(std::chrono::nanoseconds now);
+
+  // The control stage's parts.
+  void mission_input(TickState& t);
+  void aid_partial_view(TickState& t);
+  void take_operator_commands(std::chrono::nanoseconds now);
+  void servo_wrench(TickState& t);
+  control::Wrench back_out_wrench(const TickState& t) const;
+  void run_failsafe(TickState& t);
+  control::FailsafeInput failsafe_input(const TickState& t);
+  void restart_mission(std::chrono::nanoseconds now, const char* reason);
+  // The actuate stage's parts.
+  void retry_disarm();
+  void rearm_after_failsafe();
+  // The telemetry stage's parts.
+  void queue_mission_and_failsafe_events();
+  void post_gcs_values(const TickState& t);
+  void fill_record(const TickState& t, TelemetryRecord& rec) const;
+
   void queue(const LoopEvent& e);
   // Reads the ESCs' telemetry, judges it against the last commands and removes newly failed
   // thrusters from the allocation, each logged.

@@ -1,18 +1,12 @@
 // The rules that judge ArduSub's pilot-input and RC-override failsafes for rovctl.
 #include "drivers/mavlink/ardusub_failsafe_params.hpp"
+#include "hal/primitives/number_format.hpp"
 
 #include <cmath>
-#include <sstream>
 
 namespace rovctl::drivers {
 
 namespace {
-
-std::string number(float v) {
-  std::ostringstream s;
-  s << v;
-  return s.str();
-}
 
 ArdusubFailsafeVerdict pilot_input(std::optional<float> v) {
   ArdusubFailsafeVerdict r{"FS_PILOT_INPUT", v, false, ""};
@@ -26,7 +20,7 @@ ArdusubFailsafeVerdict pilot_input(std::optional<float> v) {
   } else if (*v == 0.0F) {
     r.reason = "0: disabled, ArduSub keeps the last MANUAL_CONTROL when rovctl goes silent; set 2";
   } else {
-    r.reason = number(*v) + ": not an ArduSub value (0, 1, 2); set 2";
+    r.reason = hal::format_number(*v) + ": not an ArduSub value (0, 1, 2); set 2";
   }
   return r;
 }
@@ -37,14 +31,15 @@ ArdusubFailsafeVerdict pilot_timeout(const ArdusubParams& p, std::optional<float
   // In float, as ArduSub stores it: 0.3 s read back is not above a 300 ms wait.
   const float ack_s = static_cast<float>(p.ack_timeout_ms) / 1000.0F;
   if (!std::isfinite(*v) || *v <= ack_s) {
-    r.reason = number(*v) + " s: not above thruster_bus.ardusub.ack_timeout_ms (" + number(ack_s) +
-               " s), the wait for an arm ack without MANUAL_CONTROL";
+    r.reason = hal::format_number(*v) + " s: not above thruster_bus.ardusub.ack_timeout_ms (" +
+               hal::format_number(ack_s) + " s), the wait for an arm ack without MANUAL_CONTROL";
   } else if (*v > kMaxArdusubSilenceS) {
-    r.reason = number(*v) + " s: ArduSub obeys a silent rovctl's last command that long; at most " +
-               number(static_cast<float>(kMaxArdusubSilenceS)) + " s";
+    r.reason = hal::format_number(*v) +
+               " s: ArduSub obeys a silent rovctl's last command that long; at most " +
+               hal::format_number(static_cast<float>(kMaxArdusubSilenceS)) + " s";
   } else {
     r.safe = true;
-    r.reason = number(*v) + " s of silence before ArduSub's pilot-input failsafe";
+    r.reason = hal::format_number(*v) + " s of silence before ArduSub's pilot-input failsafe";
   }
   return r;
 }
@@ -54,17 +49,19 @@ ArdusubFailsafeVerdict override_time(const ArdusubParams& p, std::optional<float
   if (!v) return r;
   if (p.mode != "thrusters") {
     r.safe = true;
-    r.reason = number(*v) + " s: not used by " + p.mode + " mode (MANUAL_CONTROL)";
+    r.reason = hal::format_number(*v) + " s: not used by " + p.mode + " mode (MANUAL_CONTROL)";
   } else if (*v < 0.0F) {
-    r.reason = number(*v) + ": overrides never time out, ArduSub holds a silent rovctl's PWM";
+    r.reason =
+        hal::format_number(*v) + ": overrides never time out, ArduSub holds a silent rovctl's PWM";
   } else if (*v == 0.0F) {
     r.reason = "0: RC overrides disabled, rovctl cannot drive the thrusters";
   } else if (*v > kMaxArdusubSilenceS) {
-    r.reason = number(*v) + " s: ArduSub holds a silent rovctl's PWM that long; at most " +
-               number(static_cast<float>(kMaxArdusubSilenceS)) + " s";
+    r.reason = hal::format_number(*v) +
+               " s: ArduSub holds a silent rovctl's PWM that long; at most " +
+               hal::format_number(static_cast<float>(kMaxArdusubSilenceS)) + " s";
   } else {
     r.safe = true;
-    r.reason = number(*v) + " s until ArduSub drops rovctl's RC overrides";
+    r.reason = hal::format_number(*v) + " s until ArduSub drops rovctl's RC overrides";
   }
   return r;
 }

@@ -1,18 +1,19 @@
 // The MAVLink messages rovctl exchanges with ArduSub and the ground station, as plain structs
-// with pack/unpack to the v2 wire order (fields by size, extensions last), no allocation.
+// whose wire() lists the fields once in v2 wire order (fields by size, extensions last); pack and
+// unpack both run that list. No allocation.
 #pragma once
 
 #include <array>
+#include <concepts>
 #include <cstddef>
 #include <cstdint>
 #include <span>
 #include <string_view>
 
 #include "drivers/mavlink/mavlink_codec.hpp"
+#include "drivers/mavlink/mavlink_payload.hpp"
 
 namespace rovctl::drivers::mavlink {
-
-using Payload = std::array<std::uint8_t, kMaxPayloadBytes>;
 
 // MAV_CMD values used with COMMAND_LONG.
 constexpr std::uint16_t kCmdComponentArmDisarm = 400;
@@ -32,6 +33,9 @@ struct Heartbeat {  // HEARTBEAT (0)
   std::uint8_t mavlink_version = 3;
 
   bool operator==(const Heartbeat&) const = default;
+  static void wire(auto& m, auto& io) {
+    io(m.custom_mode, m.type, m.autopilot, m.base_mode, m.system_status, m.mavlink_version);
+  }
 };
 
 struct SysStatus {  // SYS_STATUS (1)
@@ -51,6 +55,12 @@ struct SysStatus {  // SYS_STATUS (1)
   std::uint32_t sensors_health_extended = 0;
 
   bool operator==(const SysStatus&) const = default;
+  static void wire(auto& m, auto& io) {
+    io(m.sensors_present, m.sensors_enabled, m.sensors_health, m.load_permille,
+       m.voltage_battery_mv, m.current_battery_ca, m.drop_rate_comm_cpct, m.errors_comm,
+       m.errors_count, m.battery_remaining_pct, m.sensors_present_extended,
+       m.sensors_enabled_extended, m.sensors_health_extended);
+  }
 };
 
 struct ParamRequestRead {  // PARAM_REQUEST_READ (20)
@@ -61,6 +71,9 @@ struct ParamRequestRead {  // PARAM_REQUEST_READ (20)
   std::array<char, 16> param_id{};  // NUL-terminated only when shorter than 16
 
   bool operator==(const ParamRequestRead&) const = default;
+  static void wire(auto& m, auto& io) {
+    io(m.param_index, m.target_system, m.target_component, m.param_id);
+  }
 };
 
 struct ParamValue {  // PARAM_VALUE (22)
@@ -72,6 +85,9 @@ struct ParamValue {  // PARAM_VALUE (22)
   std::uint8_t param_type = 0;  // MAV_PARAM_TYPE
 
   bool operator==(const ParamValue&) const = default;
+  static void wire(auto& m, auto& io) {
+    io(m.param_value, m.param_count, m.param_index, m.param_id, m.param_type);
+  }
 };
 
 struct AttitudeQuaternion {  // ATTITUDE_QUATERNION (31)
@@ -84,6 +100,10 @@ struct AttitudeQuaternion {  // ATTITUDE_QUATERNION (31)
   std::array<float, 4> repr_offset_q{};  // extension
 
   bool operator==(const AttitudeQuaternion&) const = default;
+  static void wire(auto& m, auto& io) {
+    io(m.time_boot_ms, m.q_ned_body, m.rollspeed_rad_s, m.pitchspeed_rad_s, m.yawspeed_rad_s,
+       m.repr_offset_q);
+  }
 };
 
 struct ManualControl {  // MANUAL_CONTROL (69)
@@ -101,6 +121,9 @@ struct ManualControl {  // MANUAL_CONTROL (69)
   std::array<std::int16_t, 6> aux{};
 
   bool operator==(const ManualControl&) const = default;
+  static void wire(auto& m, auto& io) {
+    io(m.x, m.y, m.z, m.r, m.buttons, m.target, m.buttons2, m.enabled_extensions, m.s, m.t, m.aux);
+  }
 };
 
 struct RcChannelsOverride {  // RC_CHANNELS_OVERRIDE (70)
@@ -112,6 +135,10 @@ struct RcChannelsOverride {  // RC_CHANNELS_OVERRIDE (70)
   std::uint8_t target_component = 0;
 
   bool operator==(const RcChannelsOverride&) const = default;
+  static void wire(auto& m, auto& io) {
+    io(std::span(m.channels_us).template first<8>(), m.target_system, m.target_component,
+       std::span(m.channels_us).template subspan<8>());
+  }
 };
 
 struct VfrHud {  // VFR_HUD (74)
@@ -124,6 +151,9 @@ struct VfrHud {  // VFR_HUD (74)
   std::uint16_t throttle_pct = 0;
 
   bool operator==(const VfrHud&) const = default;
+  static void wire(auto& m, auto& io) {
+    io(m.airspeed_m_s, m.groundspeed_m_s, m.alt_m, m.climb_m_s, m.heading_deg, m.throttle_pct);
+  }
 };
 
 struct CommandLong {  // COMMAND_LONG (76)
@@ -135,6 +165,9 @@ struct CommandLong {  // COMMAND_LONG (76)
   std::uint8_t confirmation = 0;
 
   bool operator==(const CommandLong&) const = default;
+  static void wire(auto& m, auto& io) {
+    io(m.params, m.command, m.target_system, m.target_component, m.confirmation);
+  }
 };
 
 struct CommandAck {  // COMMAND_ACK (77)
@@ -147,6 +180,9 @@ struct CommandAck {  // COMMAND_ACK (77)
   std::uint8_t target_component = 0;
 
   bool operator==(const CommandAck&) const = default;
+  static void wire(auto& m, auto& io) {
+    io(m.command, m.result, m.progress, m.result_param2, m.target_system, m.target_component);
+  }
 };
 
 struct ScaledPressure2 {  // SCALED_PRESSURE2 (137)
@@ -158,6 +194,10 @@ struct ScaledPressure2 {  // SCALED_PRESSURE2 (137)
   std::int16_t temperature_press_diff_cdegc = 0;
 
   bool operator==(const ScaledPressure2&) const = default;
+  static void wire(auto& m, auto& io) {
+    io(m.time_boot_ms, m.press_abs_hpa, m.press_diff_hpa, m.temperature_cdegc,
+       m.temperature_press_diff_cdegc);
+  }
 };
 
 struct NamedValueFloat {  // NAMED_VALUE_FLOAT (251)
@@ -167,6 +207,7 @@ struct NamedValueFloat {  // NAMED_VALUE_FLOAT (251)
   std::array<char, 10> name{};
 
   bool operator==(const NamedValueFloat&) const = default;
+  static void wire(auto& m, auto& io) { io(m.time_boot_ms, m.value, m.name); }
 };
 
 struct StatusText {  // STATUSTEXT (253)
@@ -177,38 +218,38 @@ struct StatusText {  // STATUSTEXT (253)
   std::uint8_t chunk_seq = 0;
 
   bool operator==(const StatusText&) const = default;
+  static void wire(auto& m, auto& io) { io(m.severity, m.text, m.id, m.chunk_seq); }
 };
 
-// Each pack writes the full message (extensions included) and returns its length; the frame
-// encoder then cuts the trailing zeros. Each unpack reads a frame's zero-extended payload and
-// is false when the frame carries another message.
-std::size_t pack(const Heartbeat& m, Payload& out);
-std::size_t pack(const SysStatus& m, Payload& out);
-std::size_t pack(const ParamRequestRead& m, Payload& out);
-std::size_t pack(const ParamValue& m, Payload& out);
-std::size_t pack(const AttitudeQuaternion& m, Payload& out);
-std::size_t pack(const ManualControl& m, Payload& out);
-std::size_t pack(const RcChannelsOverride& m, Payload& out);
-std::size_t pack(const VfrHud& m, Payload& out);
-std::size_t pack(const CommandLong& m, Payload& out);
-std::size_t pack(const CommandAck& m, Payload& out);
-std::size_t pack(const ScaledPressure2& m, Payload& out);
-std::size_t pack(const NamedValueFloat& m, Payload& out);
-std::size_t pack(const StatusText& m, Payload& out);
+// A message struct above: its id and its fields in wire order (v2: base fields by type size,
+// stable, extensions in declaration order after them), the one place each message's layout is
+// written.
+template <typename M>
+concept WireMessage = requires(M& m, const M& c, detail::PayloadWriter& w,
+                               detail::PayloadReader& r) {
+  { M::kId } -> std::convertible_to<std::uint32_t>;
+  M::wire(c, w);
+  M::wire(m, r);
+};
 
-bool unpack(const Frame& f, Heartbeat& m);
-bool unpack(const Frame& f, SysStatus& m);
-bool unpack(const Frame& f, ParamRequestRead& m);
-bool unpack(const Frame& f, ParamValue& m);
-bool unpack(const Frame& f, AttitudeQuaternion& m);
-bool unpack(const Frame& f, ManualControl& m);
-bool unpack(const Frame& f, RcChannelsOverride& m);
-bool unpack(const Frame& f, VfrHud& m);
-bool unpack(const Frame& f, CommandLong& m);
-bool unpack(const Frame& f, CommandAck& m);
-bool unpack(const Frame& f, ScaledPressure2& m);
-bool unpack(const Frame& f, NamedValueFloat& m);
-bool unpack(const Frame& f, StatusText& m);
+// pack writes the full message (extensions included) and returns its length; the frame encoder
+// then cuts the trailing zeros. unpack reads a frame's zero-extended payload and is false when
+// the frame carries another message.
+template <WireMessage M>
+std::size_t pack(const M& m, Payload& out) {
+  detail::PayloadWriter w(out);
+  M::wire(m, w);
+  return w.done(M::kId);
+}
+template <WireMessage M>
+bool unpack(const Frame& f, M& m) {
+  if (f.header.message_id != M::kId) {
+    return false;
+  }
+  detail::PayloadReader r(f.payload);
+  M::wire(m, r);
+  return true;
+}
 
 // One message as a frame from `writer` into `out`; the frame length, 0 if `out` is too small.
 template <typename Message>

@@ -7,8 +7,8 @@
 #include <thread>
 
 #include "app/runtime/bus_io_thread.hpp"
-#include "drivers/fake_ardusub.hpp"
 #include "drivers/mavlink/ardusub_thruster_bus.hpp"
+#include "drivers/mavlink/fake_ardusub.hpp"
 #include "drivers/monotonic_clock.hpp"
 
 namespace rovctl::app {

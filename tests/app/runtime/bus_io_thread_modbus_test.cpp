@@ -1,5 +1,5 @@
 // Issue 11's acceptance for bus timing: the tick on its 33 ms grid writing through BusIoThread to
-// a real Modbus TCP peer (pymodbus, tests/drivers/modbus_thruster_controller.py --delay-ms)
+// a real Modbus TCP peer (pymodbus, tests/drivers/modbus/modbus_thruster_controller.py --delay-ms)
 // answering in 0, 15 and 100 ms, and hung. Prints the figures (overruns, heartbeat p50/p99).
 #include <gtest/gtest.h>
 #include <signal.h>
@@ -33,7 +33,7 @@ namespace fs = std::filesystem;
 using namespace std::chrono_literals;
 
 const std::string kController =
-    std::string(ROVCTL_TEST_DATA_DIR) + "/../drivers/modbus_thruster_controller.py";
+    std::string(ROVCTL_TEST_DATA_DIR) + "/../drivers/modbus/modbus_thruster_controller.py";
 
 struct Peer {
   pid_t pid = -1;

@@ -10,8 +10,8 @@
 #include "app/runtime/allocation_counter.hpp"
 #include "app/runtime/app_config.hpp"
 #include "app/runtime/vehicle.hpp"
-#include "drivers/fake_ardusub.hpp"
 #include "drivers/mavlink/ardusub_thruster_bus.hpp"
+#include "drivers/mavlink/fake_ardusub.hpp"
 #include "hal/mock/trial_generator.hpp"
 
 namespace rovctl::app {

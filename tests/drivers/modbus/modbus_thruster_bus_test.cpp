@@ -1,6 +1,6 @@
 // Modbus thruster bus against an independent implementation: pymodbus (python3-pymodbus) plays
-// the thruster controller (tests/drivers/modbus_thruster_controller.py) on loopback TCP and, for
-// RTU, on a pseudo-terminal pair made by socat. The controller logs every register write.
+// the thruster controller (tests/drivers/modbus/modbus_thruster_controller.py) on loopback TCP and,
+// for RTU, on a pseudo-terminal pair made by socat. The controller logs every register write.
 #include "drivers/modbus/modbus_thruster_bus.hpp"
 
 #include <gtest/gtest.h>
@@ -29,7 +29,7 @@ namespace fs = std::filesystem;
 
 const char* kPython = "/usr/bin/python3";
 const std::string kController =
-    std::string(ROVCTL_TEST_DATA_DIR) + "/../drivers/modbus_thruster_controller.py";
+    std::string(ROVCTL_TEST_DATA_DIR) + "/../drivers/modbus/modbus_thruster_controller.py";
 
 pid_t spawn(const std::vector<std::string>& args) {
   std::vector<char*> argv;

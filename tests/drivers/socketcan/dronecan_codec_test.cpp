@@ -1,5 +1,5 @@
 // DroneCAN codec against vectors derived by hand from the specification and cross-checked by
-// tests/drivers/dronecan_vectors.py (pydronecan-style serialisation, binascii CRC).
+// tests/drivers/socketcan/dronecan_vectors.py (pydronecan-style serialisation, binascii CRC).
 #include "drivers/socketcan/dronecan_codec.hpp"
 
 #include <gtest/gtest.h>

@@ -12,7 +12,7 @@
 
 #include "drivers/mavlink/mavlink_link.hpp"
 #include "drivers/mavlink/mavlink_messages.hpp"
-#include "drivers/pty_pair.hpp"
+#include "drivers/mavlink/pty_pair.hpp"
 
 namespace rovctl::drivers::mavlink {
 namespace {

@@ -13,10 +13,10 @@
 #include <thread>
 #include <vector>
 
-#include "drivers/fake_ardusub.hpp"
+#include "drivers/mavlink/fake_ardusub.hpp"
 #include "drivers/mavlink/mavlink_messages.hpp"
 #include "drivers/mavlink/mavlink_udp_link.hpp"
-#include "drivers/pty_pair.hpp"
+#include "drivers/mavlink/pty_pair.hpp"
 // The hooks live in mavlink_codec_test.cpp, in the same binary.
 #define ROVCTL_MALLOC_HOOKS_ELSEWHERE 1
 #include "malloc_counter.hpp"

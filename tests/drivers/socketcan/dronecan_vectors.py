@@ -6,7 +6,7 @@ significant byte first, each byte most significant bit first; a tail array has n
 the transfer CRC with Python's binascii.crc_hqx (CRC-16-CCITT, init 0xFFFF = CCITT-FALSE) over the
 little-endian signature then the payload, frames split as libcanard's enqueueTxFrames. The data
 type signatures are recomputed from the normalised DSDL text with CRC-64-WE.
-Run: /usr/bin/python3 tests/drivers/dronecan_vectors.py
+Run: /usr/bin/python3 tests/drivers/socketcan/dronecan_vectors.py
 """
 import binascii
 import struct
