@@ -14,6 +14,7 @@
 #include "app/runtime/systemd_notify.hpp"
 #include "app/runtime/vehicle.hpp"
 #include "app/view/operator_view.hpp"
+#include "drivers/modbus/modbus_thruster_bus.hpp"
 
 namespace rovctl::app {
 namespace {
@@ -107,6 +108,14 @@ int command_run(const Words& words) {
     // A controller that never heard "disarm" is not known to be safe: say so, and fail.
     std::cerr << "rovctl run: " << error << "\n";
     code = kExitRuntimeFailure;
+  }
+  if (const auto* modbus =
+          dynamic_cast<const drivers::ModbusThrusterBus*>(vehicle.backends().real_bus.get());
+      modbus != nullptr && !quiet) {
+    std::cerr << "rovctl run: " << modbus->name() << ": "
+              << drivers::summary(modbus->counters(),
+                                  config.thruster_bus.modbus.response_timeout_ms)
+              << "\n";
   }
   if (!quiet) {
     std::cerr << "rovctl run: stopped after " << vehicle.loop().ticks() << " ticks, mission "

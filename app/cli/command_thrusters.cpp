@@ -1,23 +1,70 @@
 // `rovctl thrusters --test`: ArduSub-style motor test — each thruster in turn at a low command
 // for a moment, heartbeat kept, neutral between and after; asks first unless --yes.
+// `rovctl thrusters --safe`: neutral and disarmed, then exit (the unit's ExecStopPost).
 #include <chrono>
 #include <cstdio>
 #include <iostream>
+#include <memory>
 #include <string>
+#include <thread>
 
 #include "app/cli/cli_args.hpp"
 #include "app/cli/commands.hpp"
 #include "app/runtime/app_config.hpp"
 #include "app/runtime/errors.hpp"
 #include "app/runtime/vehicle_backends.hpp"
+#include "drivers/thruster_bus_factory.hpp"
 
 namespace rovctl::app {
+namespace {
+
+// After `rovctl run` died without closing the bus (SIGKILL, a crash, the systemd watchdog), the
+// controller still holds its last command and armed = 1 until its own heartbeat watchdog acts:
+// open the bus alone (no camera, no calibration), write neutral, disarm, and say whether the
+// controller acknowledged. Never arms. Tries again until `timeout`, since the dead process's
+// last request may still hold the controller for a moment.
+int make_safe(const AppConfig& config, std::chrono::milliseconds timeout) {
+  std::unique_ptr<hal::ThrusterBus> bus =
+      drivers::make_thruster_bus(config.thruster_bus, config.vehicle.thrusters);
+  if (bus == nullptr) {
+    std::cout << "rovctl thrusters: thruster_bus.backend mock: no controller to make safe\n";
+    return kExitOk;
+  }
+  const auto until = std::chrono::steady_clock::now() + timeout;
+  std::string error;
+  while (true) {
+    // open() commands neutral and disarmed and fails unless the controller answered both.
+    if (bus->open(error) && bus->arm(false) == hal::BusStatus::ok) {
+      bus->close();
+      std::cout << "rovctl thrusters: " << bus->name() << ": neutral and disarmed\n";
+      return kExitOk;
+    }
+    bus->close();
+    if (std::chrono::steady_clock::now() >= until) break;
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  }
+  std::cerr << "rovctl thrusters: " << bus->name()
+            << ": neutral and disarm not acknowledged within " << timeout.count() << " ms ("
+            << error << "); the controller's heartbeat watchdog is what stops the thrusters now\n";
+  return kExitRuntimeFailure;
+}
+
+}  // namespace
 
 int command_thrusters(const Words& words) {
   const CliArgs args =
-      CliArgs::parse("thrusters", words, {"--config", "--level", "--seconds"}, {"--test", "--yes"});
+      CliArgs::parse("thrusters", words, {"--config", "--level", "--seconds", "--timeout-ms"},
+                     {"--test", "--yes", "--safe"});
   if (!args.has("--config")) throw UsageError("rovctl thrusters: --config FILE is required");
-  if (!args.has("--test")) throw UsageError("rovctl thrusters: say --test to run the motor test");
+  if (args.has("--test") == args.has("--safe")) {
+    throw UsageError(
+        "rovctl thrusters: say --test to run the motor test, or --safe to command neutral and "
+        "disarm");
+  }
+  if (args.has("--safe")) {
+    const auto timeout_ms = args.get_int("--timeout-ms", 1000, 10, 60000);
+    return make_safe(load_app_config(args.get("--config")), std::chrono::milliseconds(timeout_ms));
+  }
   const double level = args.get_double("--level", 0.15, 0.01, 0.5);
   const double seconds = args.get_double("--seconds", 1.0, 0.1, 10.0);
   const AppConfig config = load_app_config(args.get("--config"));

@@ -44,6 +44,7 @@ commands:
   run        --config FILE                the vehicle, with the backends the config names
   check      --config FILE                pre-flight checks
   thrusters  --config FILE --test [--yes] motor test, one thruster at a time
+  thrusters  --config FILE --safe [--timeout-ms N] neutral + disarm, exit 0 once acknowledged
   record     --config FILE --out DIR [--frames N]  save timestamped stereo pairs
   params     [--config FILE]              every config parameter: unit, range, default, meaning
 

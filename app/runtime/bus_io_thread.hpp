@@ -20,11 +20,12 @@ namespace rovctl::app {
 
 // What the I/O thread did, for the report and the tests (read after close()).
 struct BusIoStats {
-  std::uint64_t written = 0;        // commands handed to the bus
-  std::uint64_t acknowledged = 0;   // of those, answered ok
-  std::uint64_t dropped_stale = 0;  // older than command_deadline_ms when the bus was free
-  std::uint64_t superseded = 0;     // overwritten by a newer command before the bus was free
-  std::uint64_t withheld = 0;       // not sent while an unanswered peer was probed with reads
+  std::uint64_t written = 0;         // commands handed to the bus
+  std::uint64_t acknowledged = 0;    // of those, answered ok
+  std::uint64_t dropped_stale = 0;   // older than command_deadline_ms when the bus was free
+  std::uint64_t superseded = 0;      // overwritten by a newer command before the bus was free
+  std::uint64_t withheld = 0;        // not sent while an unanswered peer was probed with reads
+  std::uint64_t reads_deferred = 0;  // telemetry reads left out for a newer waiting command
   std::vector<double> heartbeat_period_ms;  // time between acknowledged writes
 };
 
@@ -45,7 +46,7 @@ class BusIoThread final : public hal::ThrusterBus {
   // current status.
   hal::BusStatus arm(bool armed) override;
   // Hands the command (stamped now) to the I/O thread and returns at once with the bus status:
-  // the worst of the bus's last answer and the heartbeat gap (degraded_ms, watchdog_ms).
+  // the heartbeat gap's (degraded_ms, watchdog_ms), or fault when the bus itself reported one.
   hal::BusStatus write(const hal::ThrusterCommand& command) override;
   // The newest telemetry the I/O thread read; the same status as write().
   hal::BusStatus read(hal::ThrusterTelemetry& telemetry) override;

@@ -16,8 +16,19 @@ void describe(hal::ParamVisitor& v, ModbusParams& p) {
           "put the UART in kernel RS-485 mode (for adapters whose RTS drives the transceiver)");
   v.param("slave_id", p.slave_id, {"-", 1, 247, "Modbus unit id of the thruster controller"});
   v.param("response_timeout_ms", p.response_timeout_ms,
-          {"ms", 1, 1000, "time to wait for the controller's answer to one request"});
-  v.param("retries", p.retries, {"-", 0, 5, "extra attempts of a request before it fails"});
+          {"ms", 1, 1000,
+           "time within which the controller should answer one request; a later answer is "
+           "counted late (a controller out of its timing), not failed"});
+  v.param("late_answer_ms", p.late_answer_ms,
+          {"ms", 0, 1000,
+           "how much longer than response_timeout_ms an answer is still awaited and taken: a "
+           "slow controller executes the request anyway, and an answer left to arrive during "
+           "the next request would make that one fail too"});
+  v.param("retries", p.retries,
+          {"-", 0, 5,
+           "extra attempts of an unanswered heartbeat, telemetry read, neutral or disarm; a "
+           "thrust command is never sent twice (a silent controller may be hung, and would "
+           "execute the copy late when it resumes)"});
   v.param("max_consecutive_failures", p.max_consecutive_failures,
           {"-", 1, 100, "failed ticks in a row after which the bus reports a fault (failsafe)"});
 }

@@ -18,8 +18,9 @@ struct ModbusParams {
   int stop_bits = 1;
   bool rs485 = false;  // switch the UART into kernel RS-485 mode (RTS drives the transceiver)
   int slave_id = 1;
-  int response_timeout_ms = 20;
-  int retries = 1;                   // extra attempts per transaction before it counts as failed
+  int response_timeout_ms = 20;  // an answer later than this is counted late
+  int late_answer_ms = 30;       // how much longer a late answer is still awaited and taken
+  int retries = 1;  // extra attempts of an unanswered heartbeat, read or neutral (never of thrust)
   int max_consecutive_failures = 3;  // failed ticks in a row before write() reports a fault
 };
 

@@ -1,5 +1,6 @@
-// Modbus thruster bus: one FC16 write of the eight command registers and one FC06 heartbeat per
-// tick, FC04 for telemetry; a tick fails only after every retry, N failed ticks make a fault.
+// Modbus thruster bus: one FC06 heartbeat and one FC16 write of the eight command registers per
+// tick, FC04 for telemetry; late answers are taken, thrust is never re-sent, N failed ticks make a
+// fault.
 #include "drivers/modbus/modbus_thruster_bus.hpp"
 
 #include <modbus.h>
@@ -28,6 +29,26 @@ std::int16_t thrust_permille(double thrust_fraction) {
   if (!std::isfinite(thrust_fraction)) return 0;
   const double clamped = std::clamp(thrust_fraction, -1.0, 1.0);
   return static_cast<std::int16_t>(std::lround(clamped * 1000.0));
+}
+
+std::string summary(const ModbusCounters& c, int response_timeout_ms) {
+  std::uint64_t total = 0;
+  for (auto n : c.latency_ms) total += n;
+  auto below = [&](double share) {  // upper edge of the bin holding that share
+    std::uint64_t seen = 0;
+    for (std::size_t i = 0; i < c.latency_ms.size(); ++i) {
+      seen += c.latency_ms[i];
+      if (seen > 0 && static_cast<double>(seen) >= share * static_cast<double>(total)) {
+        return std::to_string(i + 1) + (i + 1 == c.latency_ms.size() ? "+" : "");
+      }
+    }
+    return std::string("-");
+  };
+  return std::to_string(c.transactions) + " requests answered in p50 " + below(0.5) + " / p99 " +
+         below(0.99) + " / max " + below(1.0) + " ms (" + std::to_string(c.late) + " after the " +
+         std::to_string(response_timeout_ms) + " ms response timeout, taken late), " +
+         std::to_string(c.errors) + " failed attempts, " + std::to_string(c.failed_ticks) +
+         " failed ticks";
 }
 
 ModbusThrusterBus::ModbusThrusterBus(const ModbusParams& params, std::size_t thruster_count)
@@ -69,7 +90,11 @@ bool ModbusThrusterBus::open(std::string& error) {
   if (modbus_set_slave(ctx_, params_.slave_id) != 0) {
     return fail(std::string("invalid slave id: ") + modbus_strerror(errno));
   }
-  const int timeout_ms = params_.response_timeout_ms;
+  // Wait for a late answer too: a slow controller executes the request anyway, and an answer left
+  // unread arrives during the next request, which then fails on it (with a 15 ms controller on a
+  // loaded machine one miss of the 20 ms timeout failed every request after it).
+  late_after_ = std::chrono::milliseconds(params_.response_timeout_ms);
+  const int timeout_ms = params_.response_timeout_ms + params_.late_answer_ms;
   modbus_set_response_timeout(ctx_, static_cast<std::uint32_t>(timeout_ms / 1000),
                               static_cast<std::uint32_t>((timeout_ms % 1000) * 1000));
   if (modbus_connect(ctx_) != 0) {
@@ -99,6 +124,7 @@ bool ModbusThrusterBus::attempt(Op op, std::uint16_t value) {
     connected_ = true;
   }
   int rc = -1;
+  const auto sent = std::chrono::steady_clock::now();
   switch (op) {
     case Op::write_commands:
       rc = modbus_write_registers(ctx_, modbus_map::kCommandRegister, modbus_map::kChannels,
@@ -116,9 +142,19 @@ bool ModbusThrusterBus::attempt(Op op, std::uint16_t value) {
                                        input_registers_.data());
       break;
   }
-  if (rc >= 0) return true;
+  if (rc >= 0) {
+    const auto took = std::chrono::steady_clock::now() - sent;
+    if (took > late_after_) ++counters_.late;
+    const auto ms = std::chrono::duration_cast<std::chrono::milliseconds>(took).count();
+    ++counters_.latency_ms[static_cast<std::size_t>(
+        std::clamp<std::int64_t>(ms, 0, static_cast<std::int64_t>(kLatencyBins) - 1))];
+    return true;
+  }
   const int err = errno;
-  if (params_.transport == "tcp" && link_broken(err)) {
+  if (params_.transport == "tcp" && (link_broken(err) || err == ETIMEDOUT || err == EMBBADDATA)) {
+    // An answer past the window, or one to an abandoned request (its transaction id is not this
+    // one's), would arrive during the next request and fail it in turn: a new connection leaves
+    // every straggler behind on the old one.
     modbus_close(ctx_);
     connected_ = false;
   } else {
@@ -128,9 +164,10 @@ bool ModbusThrusterBus::attempt(Op op, std::uint16_t value) {
   return false;
 }
 
-bool ModbusThrusterBus::transact(Op op, std::uint16_t value) {
+bool ModbusThrusterBus::transact(Op op, std::uint16_t value, int retries) {
   if (ctx_ == nullptr) return false;
-  for (int i = 0; i <= params_.retries; ++i) {
+  if (retries < 0) retries = params_.retries;
+  for (int i = 0; i <= retries; ++i) {
     if (attempt(op, value)) {
       ++counters_.transactions;
       return true;
@@ -182,8 +219,15 @@ hal::BusStatus ModbusThrusterBus::write(const hal::ThrusterCommand& command) {
         static_cast<std::uint16_t>(drive ? thrust_permille(command.thrust_fraction[i]) : 0);
   }
   ++heartbeat_;
-  // Skip the heartbeat when the commands failed: a controller that sees no heartbeat stops.
-  const bool ok = transact(Op::write_commands) && transact(Op::write_heartbeat, heartbeat_);
+  // The heartbeat first, harmless if a hung controller executes it when it resumes: thrust goes
+  // only to a controller that has just answered, and once, since a copy sent to a silent one
+  // would run late. The commands fail: the next tick's are fresher, and a controller that hears
+  // no more heartbeats stops on its own.
+  const std::uint64_t errors_before = counters_.errors;
+  bool ok = transact(Op::write_heartbeat, heartbeat_);
+  // A heartbeat that needed a retry found the controller silent for a whole answer window: the
+  // command has aged by as much, and the controller may be hanging. Thrust waits for the next tick.
+  ok = ok && counters_.errors == errors_before && transact(Op::write_commands, 0, /*retries=*/0);
   return finish_tick(ok);
 }
 

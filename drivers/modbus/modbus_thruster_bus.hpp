@@ -3,6 +3,7 @@
 #pragma once
 
 #include <array>
+#include <chrono>
 #include <cstddef>
 #include <cstdint>
 #include <string>
@@ -27,13 +28,22 @@ constexpr int kChannels = 8;
 // Thrust fraction in [-1, 1] to permille, saturated; NaN is neutral.
 std::int16_t thrust_permille(double thrust_fraction);
 
+// Answer times of requests, 1 ms bins; the last bin holds everything from 63 ms on.
+constexpr std::size_t kLatencyBins = 64;
+
 struct ModbusCounters {
   std::uint64_t transactions = 0;  // requests answered
+  std::uint64_t late = 0;          // of those, answered after response_timeout_ms
   std::uint64_t errors = 0;        // failed attempts (timeouts, bad answers, broken link)
   std::uint64_t failed_ticks = 0;  // write()/read() calls that failed after all retries
   int consecutive_failures = 0;
+  std::array<std::uint32_t, kLatencyBins> latency_ms{};  // answered requests by answer time
   std::string last_error;  // set at start-up and on failure only, never on the per-tick path
 };
+
+// One line for the log: requests answered, their answer times (p50 / p99 / max, 1 ms bins) and
+// how many came after response_timeout_ms, failed attempts and failed ticks.
+std::string summary(const ModbusCounters& counters, int response_timeout_ms);
 
 class ModbusThrusterBus final : public hal::ThrusterBus {
  public:
@@ -56,13 +66,14 @@ class ModbusThrusterBus final : public hal::ThrusterBus {
 
  private:
   enum class Op { write_commands, write_heartbeat, write_armed, read_inputs };
-  // One request with retries; false once every attempt failed.
-  bool transact(Op op, std::uint16_t value = 0);
+  // One request, re-sent up to `retries` times while unanswered; false once every attempt failed.
+  bool transact(Op op, std::uint16_t value = 0, int retries = -1);
   bool attempt(Op op, std::uint16_t value);
   bool write_neutral();
   hal::BusStatus finish_tick(bool ok);
 
   ModbusParams params_;
+  std::chrono::nanoseconds late_after_{0};
   std::size_t thruster_count_;
   std::string name_;
   _modbus* ctx_ = nullptr;

@@ -186,9 +186,11 @@ class ModbusBusTest : public ::testing::Test {
         seq.push_back("register " + std::to_string(x.address));
     }
     EXPECT_EQ(seq, (std::vector<std::string>{"neutral", "armed0",  // open
-                                             "neutral", "hb1",     // disarmed write
+                                             "hb1", "neutral",     // disarmed write
                                              "neutral", "armed1",  // arm
-                                             "driven", "hb2", "driven", "hb3", "neutral",
+                                             // the heartbeat first: thrust only to a peer
+                                             // that has just answered
+                                             "hb2", "driven", "hb3", "driven", "neutral",
                                              "armed0",                // disarm
                                              "neutral", "armed0"}));  // close
     EXPECT_EQ(bus.counters().errors, 0U);
