@@ -75,10 +75,11 @@ bool start_peer(Peer& peer) {
   char tmpl[] = "/tmp/rovctl_safe_XXXXXX";
   if (::mkdtemp(tmpl) == nullptr) return false;
   peer.dir = tmpl;
-  peer.pid = spawn({"/usr/bin/python3",
-                    std::string(ROVCTL_SOURCE_DIR) + "/tests/drivers/modbus/modbus_thruster_controller.py",
-                    "--transport", "tcp", "--slave-id", "7", "--log", peer.dir + "/log",
-                    "--ready-file", peer.dir + "/ready"});
+  peer.pid =
+      spawn({"/usr/bin/python3",
+             std::string(ROVCTL_SOURCE_DIR) + "/tests/drivers/modbus/modbus_thruster_controller.py",
+             "--transport", "tcp", "--slave-id", "7", "--log", peer.dir + "/log", "--ready-file",
+             peer.dir + "/ready"});
   if (peer.pid <= 0) return false;
   const auto end = std::chrono::steady_clock::now() + 15s;
   while (!fs::exists(peer.dir + "/ready")) {
