@@ -72,6 +72,8 @@ int command_run(const Words& words) {
     view = std::make_unique<OperatorView>(config.operator_view, rig, config.marker, *link);
     if (!view->start(error)) throw ConfigError(config.config_file + ": " + error);
     if (!quiet) std::cerr << "rovctl run: operator view at " << view->url() << "\n";
+    // Said even with --quiet: who can reach the vehicle's view, and whether it takes commands.
+    std::cerr << "rovctl run: " << view->exposure() << "\n";
   }
   if (!vehicle.open(error)) throw ConfigError(error);
   const std::string devices =

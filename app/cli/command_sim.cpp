@@ -144,6 +144,7 @@ int command_sim(const Words& words) {
     if (!view->start(error)) throw UsageError("rovctl sim: " + error);
     std::cerr << "rovctl sim: operator view at " << view->url()
               << (config.operator_view.token.empty() ? " (read-only: no --token)" : "") << "\n";
+    std::cerr << "rovctl sim: " << view->exposure() << "\n";
     options.operator_link = link.get();
     options.operator_hold_at_start = args.has("--hold");
   }

@@ -79,6 +79,7 @@ int command_view(const Words& words) {
   if (!view.start(error)) throw UsageError("rovctl view: " + error);
   std::cerr << "rovctl view: replaying " << files.size() << " trial(s) from " << dir.string()
             << " at " << view.url() << " (Ctrl-C ends)\n";
+  std::cerr << "rovctl view: " << view.exposure() << "\n";
   std::signal(SIGINT, on_view_stop);
   std::signal(SIGTERM, on_view_stop);
 

@@ -17,10 +17,16 @@ void describe(hal::ParamVisitor& v, OperatorViewParams& p) {
           {"Hz", 0.5, 30.0,
            "how often the tick copies the camera images for the view (and the view encodes them)"});
   v.param("jpeg_quality", p.jpeg_quality, {"-", 10, 100, "JPEG quality of the camera stream"});
-  v.param("max_clients", p.max_clients,
-          {"clients", 1, 256,
-           "HTTP worker threads: connections served at once (each live stream, camera or events, "
-           "holds one; a browser tab holds two)"});
+  v.param("max_streams", p.max_streams,
+          {"streams", 1, 256,
+           "live streams (camera or events; a browser tab holds two) served at once, each on its "
+           "own thread below the tick's priority; the next is refused with 503. ABORT, START and "
+           "the pages never count against it"});
+  v.param("command_max_age_ms", p.command_max_age_ms,
+          {"ms", 20.0, 2000.0,
+           "ABORT or START is carried out at once or never: one older than this (from its "
+           "request's first byte), whose client has gone, or that no tick took within it, is "
+           "dropped, logged and answered 503, never applied later"});
 }
 
 bool ListenAddress::loopback() const {

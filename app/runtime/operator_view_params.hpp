@@ -1,5 +1,6 @@
 // The operator view's configuration: where its HTTP server listens, the token that guards ABORT
-// and START, and how often it shows the cameras. Off unless `listen` is set.
+// and START, how often it shows the cameras, how many may watch, and how fresh a command must be.
+// Off unless `listen` is set.
 #pragma once
 
 #include <string>
@@ -13,7 +14,8 @@ struct OperatorViewParams {
   std::string token;   // required by POST /abort and /start; empty: commands refused
   double frame_rate_hz = 10.0;
   int jpeg_quality = 70;
-  int max_clients = 64;
+  int max_streams = 16;
+  double command_max_age_ms = 250.0;
 
   bool enabled() const { return !listen.empty(); }
 };

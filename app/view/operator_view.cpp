@@ -1,11 +1,13 @@
 // Server routes, the pump that turns the link's latest tick into JSON and JPEG, and the streams.
-// Everything here runs on SCHED_OTHER threads: the pump, and the HTTP worker pool.
+// The pump and the stream and page threads run below the tick (run_below_the_tick); commands
+// are served by ViewHttpServer's command thread, which no viewer can occupy.
 #include "app/view/operator_view.hpp"
 
 #include <httplib.h>
 #include <sys/socket.h>
 
 #include <chrono>
+#include <cstdio>
 #include <iostream>
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
@@ -13,9 +15,11 @@
 #include <vector>
 
 #include "app/tools/json_writer.hpp"
+#include "app/view/background_priority.hpp"
 #include "app/view/estimate_overlay.hpp"
 #include "app/view/operator_page.hpp"
 #include "app/view/operator_state.hpp"
+#include "app/view/view_http_server.hpp"
 
 namespace rovctl::app {
 namespace {
@@ -45,18 +49,53 @@ bool same_secret(const std::string& a, const std::string& b) {
 OperatorView::OperatorView(const OperatorViewParams& params, const hal::StereoRig& rig,
                            const hal::MarkerModel& marker, OperatorLink& link,
                            OperatorViewOptions options)
-    : params_(params),
-      rig_(rig),
-      marker_(marker),
-      link_(link),
-      options_(std::move(options)),
-      server_(std::make_unique<httplib::Server>()) {}
+    : params_(params), rig_(rig), marker_(marker), link_(link), options_(std::move(options)) {
+  ViewHttpLimits limits;
+  limits.max_streams = params_.max_streams;
+  server_ =
+      std::make_unique<ViewHttpServer>(limits, [](std::string_view method, std::string_view path) {
+        if (method == "POST" && (path == "/abort" || path == "/start")) return RequestKind::command;
+        if (method == "GET" && (path == "/events" || path == "/stream.mjpg"))
+          return RequestKind::stream;
+        return RequestKind::page;
+      });
+}
 
 OperatorView::~OperatorView() { stop(); }
 
 std::string OperatorView::url() const {
   const bool v6 = host_.find(':') != std::string::npos;
   return "http://" + (v6 ? "[" + host_ + "]" : host_) + ":" + std::to_string(port_) + "/";
+}
+
+namespace {
+
+// A stream with nothing new to send learns here that its viewer left (else only at its next
+// write), so the stream thread is free again.
+bool client_gone() {
+  const ViewRequestInfo* info = ViewHttpServer::current();
+  return info != nullptr && info->client_gone();
+}
+
+}  // namespace
+
+int OperatorView::streams_open() const { return server_->streams_open(); }
+std::uint64_t OperatorView::streams_refused() const { return server_->streams_refused(); }
+
+std::string OperatorView::exposure() const {
+  const bool replay = std::string_view(options_.source) == "replay";
+  const std::string commands = replay ? "read-only: a replay takes no commands"
+                               : params_.token.empty()
+                                   ? "read-only: no token, ABORT and START are refused"
+                                   : "commands enabled: whoever has the token can ABORT and START";
+  ListenAddress address;
+  address.host = host_;
+  if (address.loopback()) return "operator view on this machine only (" + host_ + "); " + commands;
+  const bool every = host_ == "0.0.0.0" || host_ == "::" || host_.empty();
+  return "warning: the operator view listens on " +
+         (every ? std::string("every address of this machine") : host_) + " port " +
+         std::to_string(port_) +
+         ": anyone who can reach it sees the cameras and the mission, without a login; " + commands;
 }
 
 bool OperatorView::authorised(const std::string& token) const {
@@ -95,10 +134,8 @@ void OperatorView::routes() {
   s.Get("/events", [this](const httplib::Request&, httplib::Response& res) {
     res.set_header("Cache-Control", "no-cache");
     auto seen = std::make_shared<std::uint64_t>(0);
-    ++streams_;
     res.set_content_provider(
-        "text/event-stream",
-        [this, seen](std::size_t, httplib::DataSink& sink) {
+        "text/event-stream", [this, seen](std::size_t, httplib::DataSink& sink) {
           std::shared_ptr<const std::string> state;
           {
             std::unique_lock<std::mutex> lock(mutex_);
@@ -112,8 +149,7 @@ void OperatorView::routes() {
           }
           const std::string msg = state ? "data: " + *state + "\n\n" : std::string(": alive\n\n");
           return sink.write(msg.data(), msg.size());
-        },
-        [this](bool) { --streams_; });
+        });
   });
   s.Get("/stream.mjpg", [this](const httplib::Request&, httplib::Response& res) {
     if (!options_.images) {
@@ -123,7 +159,6 @@ void OperatorView::routes() {
     }
     res.set_header("Cache-Control", "no-cache");
     auto seen = std::make_shared<std::uint64_t>(0);
-    ++streams_;
     res.set_content_provider(
         std::string("multipart/x-mixed-replace; boundary=") + kBoundary,
         [this, seen](std::size_t, httplib::DataSink& sink) {
@@ -133,7 +168,7 @@ void OperatorView::routes() {
             changed_.wait_for(lock, kKeepAlive,
                               [&] { return stopping_ || (frame_seq_ != *seen && jpeg_); });
             if (stopping_) return false;
-            if (frame_seq_ == *seen || !jpeg_) return true;  // nothing new: wait again
+            if (frame_seq_ == *seen || !jpeg_) return !client_gone();  // nothing new: wait again
             *seen = frame_seq_;
             jpeg = jpeg_;
           }
@@ -144,8 +179,7 @@ void OperatorView::routes() {
               "\r\n\r\n";
           return sink.write(head.data(), head.size()) && sink.write(jpeg->data(), jpeg->size()) &&
                  sink.write("\r\n", 2);
-        },
-        [this](bool) { --streams_; });
+        });
   });
   s.Get("/snapshot.jpg", [this](const httplib::Request&, httplib::Response& res) {
     std::shared_ptr<const std::string> jpeg;
@@ -160,8 +194,8 @@ void OperatorView::routes() {
     }
     res.set_content(*jpeg, "image/jpeg");
   });
-  const auto command = [this](const char* name, bool abort) {
-    return [this, name, abort](const httplib::Request& req, httplib::Response& res) {
+  const auto command = [this](const char* name, OperatorCommand which) {
+    return [this, name, which](const httplib::Request& req, httplib::Response& res) {
       if (params_.token.empty()) {
         ++refused_;
         res.status = 403;
@@ -177,17 +211,53 @@ void OperatorView::routes() {
         res.set_content("refused: wrong or missing X-Rovctl-Token", "text/plain");
         return;
       }
-      const std::uint64_t tick = abort ? link_.request_abort() : link_.request_start();
-      if (abort) abort_tick_.store(tick == 0 ? 1 : tick);
+      // At once or never: an operator who saw a command fail (or gave up on it) must not see it
+      // run later, so an old request, one whose client has gone, or one no tick takes within
+      // the bound is dropped here and withdrawn from the link.
+      const auto max_age = std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+          std::chrono::duration<double, std::milli>(params_.command_max_age_ms));
+      const ViewRequestInfo* info = ViewHttpServer::current();
+      const auto now = std::chrono::steady_clock::now();
+      const auto received = info != nullptr ? info->received_at : now;
+      const double waited_ms = std::chrono::duration<double, std::milli>(now - received).count();
+      char bound[32];
+      std::snprintf(bound, sizeof(bound), "%.0f ms", params_.command_max_age_ms);
+      std::string why;
+      OperatorCommandResult result;
+      if (now - received > max_age) {
+        char text[96];
+        std::snprintf(text, sizeof(text), "it waited %.0f ms, over ", waited_ms);
+        why = text + std::string(bound) + " (operator_view.command_max_age_ms)";
+      } else if (info != nullptr && info->client_gone()) {
+        why = "its client has gone";
+      } else {
+        result = link_.submit(which, received + max_age);
+        if (!result.taken) {
+          why = "no tick took it within " + std::string(bound) +
+                " of its request (operator_view.command_max_age_ms)";
+        }
+      }
+      if (!result.taken) {
+        ++dropped_;
+        std::cerr << "rovctl: operator view: " << name << " from " << req.remote_addr
+                  << " dropped, not applied: " << why << "\n";
+        res.status = 503;
+        res.set_content(std::string(name) + " not applied: " + why, "text/plain");
+        return;
+      }
+      if (which == OperatorCommand::abort) abort_tick_.store(result.tick == 0 ? 1 : result.tick);
       std::cerr << "rovctl: operator view: " << name << " from " << req.remote_addr
-                << " accepted at tick " << tick << "\n";
+                << " taken at tick " << result.tick << "\n";
       JsonWriter w;
-      w.begin_object().field("accepted", name).field("tick", static_cast<long>(tick)).end_object();
+      w.begin_object()
+          .field("accepted", name)
+          .field("tick", static_cast<long>(result.tick))
+          .end_object();
       res.set_content(w.str(), "application/json");
     };
   };
-  s.Post("/abort", command("ABORT", true));
-  s.Post("/start", command("START", false));
+  s.Post("/abort", command("ABORT", OperatorCommand::abort));
+  s.Post("/start", command("START", OperatorCommand::start));
   // BlueOS lists and embeds services that answer this (name, icon, the page to open).
   s.Get("/register_service", [this](const httplib::Request&, httplib::Response& res) {
     JsonWriter w;
@@ -213,10 +283,7 @@ bool OperatorView::start(std::string& error) {
     return false;
   }
   host_ = address.host;
-  const int workers = params_.max_clients;
-  server_->new_task_queue = [workers] { return new httplib::ThreadPool(workers); };
   server_->set_write_timeout(std::chrono::seconds(2));
-  server_->set_keep_alive_max_count(1000);
   // httplib's default is SO_REUSEPORT, which lets a second rovctl bind the same port and share
   // its clients (ABORT included) unnoticed: only SO_REUSEADDR here, so a busy port is an error.
   server_->set_socket_options([](int sock) {
@@ -240,8 +307,12 @@ bool OperatorView::start(std::string& error) {
     std::lock_guard<std::mutex> lock(mutex_);
     stopping_ = false;
   }
+  if (!server_->start_dispatch(run_below_the_tick, error)) return false;
   running_ = true;
-  pump_thread_ = std::thread([this] { pump(); });
+  pump_thread_ = std::thread([this] {
+    run_below_the_tick();  // the JPEG encoding, once per frame whatever the number of viewers
+    pump();
+  });
   server_thread_ = std::thread([this] { server_->listen_after_bind(); });
   // httplib's stop() is a no-op until the listen loop runs: wait for it, so that a stop() right
   // after start() cannot leave the listen thread blocked forever.
@@ -266,6 +337,7 @@ void OperatorView::stop() {
   changed_.notify_all();
   server_->stop();
   if (server_thread_.joinable()) server_thread_.join();
+  server_->stop_dispatch();
   if (pump_thread_.joinable()) pump_thread_.join();
   running_ = false;
 }

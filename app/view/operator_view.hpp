@@ -2,7 +2,9 @@
 // the vehicle sees and believes — the cameras with the estimate drawn on them as an MJPEG
 // stream, the latest telemetry as JSON and Server-Sent Events — and takes ABORT and START with
 // the configured token. Reads the tick only through an OperatorLink, so a slow or vanished
-// browser drops frames and never delays a tick.
+// browser drops frames and never delays a tick; commands travel on a path no viewer shares, and
+// a command is carried out at once (a tick takes it within operator_view.command_max_age_ms) or
+// never.
 #pragma once
 
 #include <atomic>
@@ -18,11 +20,9 @@
 #include "hal/model/marker_model.hpp"
 #include "hal/model/stereo_rig.hpp"
 
-namespace httplib {
-class Server;
-}
-
 namespace rovctl::app {
+
+class ViewHttpServer;
 
 struct OperatorViewOptions {
   const char* source = "live";  // "live" or "replay" (shown on the page)
@@ -47,9 +47,17 @@ class OperatorView {
 
   int port() const { return port_; }
   std::string url() const;
+  // One line for the command that serves the view to print once started: whether the address is
+  // reachable beyond this machine (then it begins "warning: ") and whether ABORT and START are
+  // enabled.
+  std::string exposure() const;
   std::uint64_t frames_encoded() const { return frames_encoded_.load(); }
   std::uint64_t commands_refused() const { return refused_.load(); }
-  int streams_open() const { return streams_.load(); }
+  // Commands with the right token that were not carried out: too old, client gone, or no tick
+  // took them in time.
+  std::uint64_t commands_dropped() const { return dropped_.load(); }
+  int streams_open() const;
+  std::uint64_t streams_refused() const;
 
  private:
   void pump();
@@ -61,7 +69,7 @@ class OperatorView {
   const hal::MarkerModel& marker_;
   OperatorLink& link_;
   OperatorViewOptions options_;
-  std::unique_ptr<httplib::Server> server_;
+  std::unique_ptr<ViewHttpServer> server_;
   std::thread server_thread_;
   std::thread pump_thread_;
   std::string host_;
@@ -80,7 +88,7 @@ class OperatorView {
 
   std::atomic<std::uint64_t> frames_encoded_{0};
   std::atomic<std::uint64_t> refused_{0};
-  std::atomic<int> streams_{0};
+  std::atomic<std::uint64_t> dropped_{0};
 };
 
 }  // namespace rovctl::app

@@ -1,9 +1,14 @@
 // The operator view's server against an HTTP client: the page, the state, the picture, the
-// streams, BlueOS registration, and ABORT/START guarded by the token.
+// streams, BlueOS registration, ABORT/START guarded by the token and carried out at once or
+// never, streams bounded, and commands through whatever the viewers hold.
 #include "app/view/operator_view.hpp"
 
 #include <gtest/gtest.h>
 #include <httplib.h>
+#include <netinet/in.h>
+#include <poll.h>
+#include <sys/socket.h>
+#include <unistd.h>
 
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
@@ -59,6 +64,71 @@ bool eventually(Pred pred) {
   }
   return false;
 }
+
+// A tick on its own thread: publishes and takes commands every 10 ms, counting what it took.
+struct Ticker {
+  Fixture& f;
+  std::atomic<bool> running{true};
+  std::atomic<int> aborts{0};
+  std::atomic<int> starts{0};
+  std::atomic<std::uint64_t> abort_tick{0};
+  std::thread thread;
+  Ticker(Fixture& fixture, std::uint64_t first) : f(fixture) {
+    thread = std::thread([this, first] {
+      for (std::uint64_t t = first; running; ++t) {
+        if (f.link.take_abort()) {
+          ++aborts;
+          abort_tick = t;
+        }
+        if (f.link.take_start()) ++starts;
+        f.publish_tick(t);
+        std::this_thread::sleep_for(std::chrono::milliseconds(10));
+      }
+    });
+  }
+  void stop() {
+    running = false;
+    if (thread.joinable()) thread.join();
+  }
+  ~Ticker() { stop(); }
+};
+
+// A bare TCP client: sends what it is told, reads what comes.
+struct RawClient {
+  int fd = -1;
+  explicit RawClient(int port) {
+    fd = socket(AF_INET, SOCK_STREAM, 0);
+    sockaddr_in a{};
+    a.sin_family = AF_INET;
+    a.sin_port = htons(static_cast<std::uint16_t>(port));
+    a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+    if (connect(fd, reinterpret_cast<sockaddr*>(&a), sizeof(a)) != 0) ADD_FAILURE() << "connect";
+  }
+  ~RawClient() { close(fd); }
+  RawClient(const RawClient&) = delete;
+  RawClient& operator=(const RawClient&) = delete;
+  void send(const std::string& bytes) {
+    std::size_t sent = 0;
+    while (sent < bytes.size()) {
+      const ssize_t n = ::send(fd, bytes.data() + sent, bytes.size() - sent, MSG_NOSIGNAL);
+      if (n <= 0) return;  // the server closed (it refused what it read)
+      sent += static_cast<std::size_t>(n);
+    }
+  }
+  std::string read_until(const std::string& marker, std::chrono::milliseconds timeout) {
+    std::string got;
+    const auto until = std::chrono::steady_clock::now() + timeout;
+    char buf[4096];
+    while (got.find(marker) == std::string::npos && std::chrono::steady_clock::now() < until) {
+      pollfd p{fd, POLLIN, 0};
+      if (poll(&p, 1, 50) <= 0) continue;
+      const ssize_t n = recv(fd, buf, sizeof(buf), 0);
+      if (n <= 0) break;
+      got.append(buf, static_cast<std::size_t>(n));
+    }
+    return got;
+  }
+};
 
 TEST(OperatorView, ServesThePageStateAndPicture) {
   Fixture f;
@@ -130,17 +200,191 @@ TEST(OperatorView, CommandsNeedTheToken) {
   EXPECT_NE(get->status, 200) << "ABORT is POST only";
   EXPECT_FALSE(f.link.take_abort());
 
+  Ticker ticker(f, 42);
   auto ok = client.Post("/abort", httplib::Headers{{"X-Rovctl-Token", kToken}}, "", "text/plain");
   ASSERT_TRUE(ok);
-  EXPECT_EQ(ok->status, 200);
-  EXPECT_NE(ok->body.find("\"tick\": 41"), std::string::npos) << ok->body;
-  EXPECT_TRUE(f.link.take_abort());
-  EXPECT_FALSE(f.link.take_abort()) << "one request, one abort";
+  EXPECT_EQ(ok->status, 200) << ok->body;
+  EXPECT_NE(ok->body.find("\"accepted\": \"ABORT\""), std::string::npos) << ok->body;
   auto start =
       client.Post("/start", httplib::Headers{{"X-Rovctl-Token", kToken}}, "", "text/plain");
   ASSERT_TRUE(start);
-  EXPECT_EQ(start->status, 200);
-  EXPECT_TRUE(f.link.take_start());
+  EXPECT_EQ(start->status, 200) << start->body;
+  ticker.stop();
+  EXPECT_EQ(ticker.aborts, 1) << "one request, one abort";
+  EXPECT_EQ(ticker.starts, 1);
+  // The answer names the tick that took it.
+  EXPECT_NE(ok->body.find("\"tick\": " + std::to_string(ticker.abort_tick)), std::string::npos)
+      << ok->body;
+  EXPECT_EQ(view.commands_dropped(), 0u);
+}
+
+// A command no tick takes within command_max_age_ms is answered 503 and withdrawn: a tick that
+// runs afterwards never sees it.
+TEST(OperatorView, ACommandNoTickTakesIsDroppedNotAppliedLater) {
+  Fixture f;
+  f.params.command_max_age_ms = 100.0;
+  OperatorView view(f.params, f.rig, f.config.marker, f.link);
+  std::string error;
+  ASSERT_TRUE(view.start(error)) << error;
+  f.publish_tick(5);
+  httplib::Client client("127.0.0.1", view.port());
+  auto r = client.Post("/start", httplib::Headers{{"X-Rovctl-Token", kToken}}, "", "text/plain");
+  ASSERT_TRUE(r);
+  EXPECT_EQ(r->status, 503);
+  EXPECT_NE(r->body.find("START not applied: no tick took it"), std::string::npos) << r->body;
+  EXPECT_EQ(view.commands_dropped(), 1u);
+  EXPECT_FALSE(f.link.take_start()) << "withdrawn: the next tick does not take it";
+}
+
+// Issue 48: with the server busy, a START timed out at the client and ran when the server came
+// to it. Here START B waits behind START A (which no tick takes: the command path is held for
+// command_max_age_ms); B's client gives up meanwhile; then the tick runs. B is never applied.
+TEST(OperatorView, AStartWhoseClientGaveUpIsNeverApplied) {
+  Fixture f;
+  f.params.command_max_age_ms = 300.0;
+  OperatorView view(f.params, f.rig, f.config.marker, f.link);
+  std::string error;
+  ASSERT_TRUE(view.start(error)) << error;
+  f.publish_tick(5);
+  int a_status = 0;
+  std::thread a([&] {
+    httplib::Client client("127.0.0.1", view.port());
+    auto r = client.Post("/start", httplib::Headers{{"X-Rovctl-Token", kToken}}, "", "text/plain");
+    a_status = r ? r->status : -1;
+  });
+  std::this_thread::sleep_for(std::chrono::milliseconds(50));  // A holds the command path
+  bool b_answered = true;
+  {
+    httplib::Client client("127.0.0.1", view.port());
+    client.set_read_timeout(std::chrono::milliseconds(100));
+    auto r = client.Post("/start", httplib::Headers{{"X-Rovctl-Token", kToken}}, "", "text/plain");
+    b_answered = static_cast<bool>(r);
+  }  // B's client closes its connection: it gave up
+  EXPECT_FALSE(b_answered) << "B was still waiting when its client gave up";
+  a.join();
+  EXPECT_EQ(a_status, 503) << "A: no tick took it within its bound";
+  Ticker ticker(f, 6);  // the tick runs from here on, taking whatever START reaches it
+  std::this_thread::sleep_for(std::chrono::milliseconds(600));
+  ticker.stop();
+  EXPECT_EQ(ticker.starts, 0) << "neither START ran after its client saw it fail";
+  EXPECT_EQ(view.commands_dropped(), 2u);
+}
+
+// A request that took longer than command_max_age_ms to arrive (its first byte, then the rest)
+// is too old to apply, even with the tick running and the client still waiting.
+TEST(OperatorView, ACommandOlderThanItsBoundIsDropped) {
+  Fixture f;
+  f.params.command_max_age_ms = 100.0;
+  OperatorView view(f.params, f.rig, f.config.marker, f.link);
+  std::string error;
+  ASSERT_TRUE(view.start(error)) << error;
+  Ticker ticker(f, 1);
+  RawClient c(view.port());
+  const std::string request = std::string("POST /start HTTP/1.1\r\nHost: x\r\nX-Rovctl-Token: ") +
+                              kToken + "\r\nContent-Length: 0\r\n\r\n";
+  c.send(request.substr(0, 10));
+  std::this_thread::sleep_for(std::chrono::milliseconds(250));
+  c.send(request.substr(10));
+  const std::string answer = c.read_until("not applied", std::chrono::seconds(2));
+  EXPECT_EQ(answer.rfind("HTTP/1.1 503", 0), 0u) << answer;
+  EXPECT_NE(answer.find("START not applied: it waited"), std::string::npos) << answer;
+  std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  ticker.stop();
+  EXPECT_EQ(ticker.starts, 0);
+}
+
+// Streams are bounded (the next is refused 503 at once), and neither open streams, refused ones,
+// idle connections nor half-sent requests stand between ABORT and the tick.
+TEST(OperatorView, CommandsGetThroughWhateverTheViewersHold) {
+  Fixture f;
+  f.params.max_streams = 4;
+  OperatorView view(f.params, f.rig, f.config.marker, f.link);
+  std::string error;
+  ASSERT_TRUE(view.start(error)) << error;
+  Ticker ticker(f, 1);
+  std::vector<std::unique_ptr<RawClient>> held;
+  for (int i = 0; i < 4; ++i) {  // admitted streams whose clients never read
+    held.push_back(std::make_unique<RawClient>(view.port()));
+    held.back()->send(i % 2 ? "GET /events HTTP/1.1\r\nHost: x\r\n\r\n"
+                            : "GET /stream.mjpg HTTP/1.1\r\nHost: x\r\n\r\n");
+  }
+  ASSERT_TRUE(eventually([&] { return view.streams_open() == 4; }));
+  RawClient fifth(view.port());
+  fifth.send("GET /%65vents HTTP/1.1\r\nHost: x\r\n\r\n");  // encoded: still a stream
+  const std::string refused = fifth.read_until("\r\n\r\n", std::chrono::seconds(2));
+  EXPECT_EQ(refused.rfind("HTTP/1.1 503", 0), 0u) << refused;
+  EXPECT_EQ(view.streams_refused(), 1u);
+  for (int i = 0; i < 200; ++i) {  // idle connections, and requests that never finish
+    held.push_back(std::make_unique<RawClient>(view.port()));
+    if (i % 2) held.back()->send("GET /state HTTP/1.1\r\nHost: x\r\nX-Slow: ");
+  }
+  httplib::Client client("127.0.0.1", view.port());
+  client.set_read_timeout(std::chrono::seconds(2));
+  auto abort =
+      client.Post("/abort", httplib::Headers{{"X-Rovctl-Token", kToken}}, "", "text/plain");
+  ASSERT_TRUE(abort) << "ABORT answered while every stream is taken";
+  EXPECT_EQ(abort->status, 200) << abort->body;
+  EXPECT_TRUE(eventually([&] {
+    auto state = client.Get("/state");
+    return state && state->status == 200;
+  })) << "pages too";
+  ticker.stop();
+  EXPECT_EQ(ticker.aborts, 1);
+  held.clear();
+  // An events stream learns its client left at its next write: the keep-alive, within 1 s.
+  EXPECT_TRUE(eventually([&] { return view.streams_open() == 0; }) ||
+              eventually([&] { return view.streams_open() == 0; }))
+      << "closed streams end";
+}
+
+// What held under the safety probes of issue 48 and must keep holding.
+TEST(OperatorView, RefusesWhatItDoesNotServe) {
+  Fixture f;
+  OperatorView view(f.params, f.rig, f.config.marker, f.link);
+  std::string error;
+  ASSERT_TRUE(view.start(error)) << error;
+  f.publish_tick(3);
+  httplib::Client client("127.0.0.1", view.port());
+  for (const char* path : {"/../../etc/passwd", "/%2e%2e/%2e%2e/etc/passwd", "/..%2f..%2fetc"}) {
+    auto r = client.Get(path);
+    ASSERT_TRUE(r) << path;
+    EXPECT_EQ(r->status, 404) << path;
+  }
+  auto options = client.Options("/abort");
+  ASSERT_TRUE(options);
+  EXPECT_EQ(options->status, 404);
+  for (const auto& r : {client.Get("/"), client.Get("/state"), client.Options("/abort")}) {
+    ASSERT_TRUE(r);
+    for (const auto& [name, value] : r->headers) {
+      EXPECT_EQ(name.rfind("Access-Control-", 0), std::string::npos) << name << ": " << value;
+    }
+  }
+  RawClient big(view.port());
+  big.send("GET /state HTTP/1.1\r\nHost: x\r\nX-Big: " + std::string(1 << 20, 'a') + "\r\n\r\n");
+  const std::string answer = big.read_until("\r\n\r\n", std::chrono::seconds(5));
+  EXPECT_EQ(answer.rfind("HTTP/1.1 400", 0), 0u) << answer.substr(0, 80);
+  // Two requests in one write on one kept-alive connection: both answered, in order.
+  RawClient pipelined(view.port());
+  pipelined.send("GET /info HTTP/1.1\r\nHost: x\r\n\r\nGET /nothing HTTP/1.1\r\nHost: x\r\n\r\n");
+  const std::string both = pipelined.read_until("404", std::chrono::seconds(2));
+  EXPECT_EQ(both.rfind("HTTP/1.1 200", 0), 0u) << both;
+  EXPECT_NE(both.find("HTTP/1.1 404"), std::string::npos) << both;
+}
+
+TEST(OperatorView, SaysWhatItExposes) {
+  Fixture f;
+  OperatorView local(f.params, f.rig, f.config.marker, f.link);
+  std::string error;
+  ASSERT_TRUE(local.start(error)) << error;
+  EXPECT_EQ(local.exposure().find("warning"), std::string::npos) << local.exposure();
+  EXPECT_NE(local.exposure().find("commands enabled"), std::string::npos) << local.exposure();
+  f.params.listen = "0.0.0.0:0";
+  f.params.token.clear();
+  OperatorView wide(f.params, f.rig, f.config.marker, f.link);
+  ASSERT_TRUE(wide.start(error)) << error;
+  EXPECT_EQ(wide.exposure().rfind("warning: the operator view listens on every address", 0), 0u)
+      << wide.exposure();
+  EXPECT_NE(wide.exposure().find("read-only"), std::string::npos) << wide.exposure();
 }
 
 TEST(OperatorView, WithoutATokenTheViewIsReadOnly) {
