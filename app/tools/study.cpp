@@ -108,8 +108,7 @@ std::vector<StudyVariant> default_variants() {
           "the default in rovctl's search box (z 0.15-1.6 m) instead of the paper's area",
           GaReading{}, false);
   reading("first-reading",
-          "rovctl's first reading, per_child / children / children / binary in rovctl's box (the "
-          "study before issue 14)",
+          "rovctl's first reading, per_child / children / children / binary in rovctl's box",
           estimator::first_ga_reading(), false);
   StudyVariant far{"far-field-paper-pc",
                    "NOT THE PAPER: the configured faithful reading in the paper's search area with "

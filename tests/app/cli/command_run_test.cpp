@@ -2,9 +2,6 @@
 // controller (pymodbus, an independent implementation) for the thrusters. The controller must
 // see commands and heartbeats at the 30 Hz tick rate, and neutral + disarmed at the end.
 #include <gtest/gtest.h>
-#include <signal.h>
-#include <spawn.h>
-#include <sys/wait.h>
 
 #include <chrono>
 #include <cstdlib>
@@ -19,25 +16,13 @@
 #include "drivers/replay/dive_recorder.hpp"
 #include "estimator/stereo_calibration.hpp"
 #include "hal/mock/scene_renderer.hpp"
+#include "modbus_peer.hpp"
 #include "test_tools.hpp"
-
-extern char** environ;
 
 namespace rovctl::app {
 namespace {
 
 namespace fs = std::filesystem;
-
-struct Controller {
-  pid_t pid = -1;
-  int port = 0;
-  ~Controller() {
-    if (pid > 0) {
-      kill(pid, SIGTERM);
-      waitpid(pid, nullptr, 0);
-    }
-  }
-};
 
 std::string write_recording(const std::string& dir, const std::string& calibration) {
   const hal::StereoRig rig = estimator::load_stereo_calibration(calibration);
@@ -72,27 +57,9 @@ TEST(CommandRun, ReplayAndModbusControllerHold30Hz) {
       std::string(ROVCTL_SOURCE_DIR) + "/deploy/config/stereo_calibration.yaml";
   const std::string dive = write_recording(dir, calibration);
 
-  Controller controller;
-  const std::string script =
-      std::string(ROVCTL_SOURCE_DIR) + "/tests/drivers/modbus/modbus_thruster_controller.py";
-  const std::string log = dir + "/controller.log";
-  const std::string ready = dir + "/ready";
-  std::vector<std::string> args = {"/usr/bin/python3", script, "--transport", "tcp", "--log", log,
-                                   "--ready-file",     ready};
-  std::vector<char*> argv;
-  for (auto& a : args) argv.push_back(a.data());
-  argv.push_back(nullptr);
-  ASSERT_EQ(posix_spawn(&controller.pid, argv[0], nullptr, nullptr, argv.data(), environ), 0);
-  for (int i = 0; i < 200 && !fs::exists(ready); ++i)
-    std::this_thread::sleep_for(std::chrono::milliseconds(50));
-  ASSERT_TRUE(fs::exists(ready)) << "the pymodbus controller did not start";
-  std::this_thread::sleep_for(std::chrono::milliseconds(50));
-  {
-    std::ifstream in(ready);
-    std::string word;
-    in >> word >> controller.port;
-  }
-  ASSERT_GT(controller.port, 0);
+  test::ModbusPeer controller;
+  ASSERT_TRUE(controller.start()) << "the pymodbus controller did not start";
+  const std::string log = controller.log();
 
   const std::string config = dir + "/bench.yaml";
   {
@@ -101,7 +68,7 @@ TEST(CommandRun, ReplayAndModbusControllerHold30Hz) {
         << "camera:\n  backend: replay\n  replay:\n    path: " << dive
         << "\n    mode: tick\n    loop: true\n"
         << "thruster_bus:\n  backend: modbus\n  modbus:\n    transport: tcp\n    host: 127.0.0.1\n"
-        << "    port: " << controller.port
+        << "    port: " << controller.port() << "\n    slave_id: 7"
         << "\n    response_timeout_ms: 200\n"
         // The peer's fault flags (0x100 + channel) and rpm (3 x permille) are a register-mapping
         // pattern, not an ESC's: judged as health they fail every thruster at tick 2.

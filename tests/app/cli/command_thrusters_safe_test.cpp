@@ -19,6 +19,7 @@
 #include <thread>
 #include <vector>
 
+#include "modbus_peer.hpp"
 #include "test_tools.hpp"
 
 extern char** environ;
@@ -57,48 +58,15 @@ int wait_exit(pid_t pid) {
   return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
 }
 
-struct Peer {
-  pid_t pid = -1;
-  std::string dir;
-  int port = 0;
-  ~Peer() {
-    if (pid > 0) {
-      ::kill(pid, SIGCONT);
-      ::kill(pid, SIGTERM);
-      ::waitpid(pid, nullptr, 0);
-    }
-    if (!dir.empty()) fs::remove_all(dir);
-  }
-};
-
-bool start_peer(Peer& peer) {
-  char tmpl[] = "/tmp/rovctl_safe_XXXXXX";
-  if (::mkdtemp(tmpl) == nullptr) return false;
-  peer.dir = tmpl;
-  peer.pid =
-      spawn({"/usr/bin/python3",
-             std::string(ROVCTL_SOURCE_DIR) + "/tests/drivers/modbus/modbus_thruster_controller.py",
-             "--transport", "tcp", "--slave-id", "7", "--log", peer.dir + "/log", "--ready-file",
-             peer.dir + "/ready"});
-  if (peer.pid <= 0) return false;
-  const auto end = std::chrono::steady_clock::now() + 15s;
-  while (!fs::exists(peer.dir + "/ready")) {
-    if (std::chrono::steady_clock::now() > end) return false;
-    std::this_thread::sleep_for(20ms);
-  }
-  std::ifstream ready(peer.dir + "/ready");
-  std::string word;
-  ready >> word >> peer.port;
-  return peer.port > 0;
-}
+using Peer = test::ModbusPeer;
 
 // The mock camera and world with the thrusters on the peer.
 std::string write_config(const Peer& peer) {
-  const std::string path = peer.dir + "/vehicle.yaml";
+  const std::string path = peer.dir() + "/vehicle.yaml";
   std::ofstream out(path);
   out << "calibration: " << ROVCTL_SOURCE_DIR << "/deploy/config/stereo_calibration.yaml\n"
       << "thruster_bus:\n  backend: modbus\n  modbus:\n    transport: tcp\n    host: 127.0.0.1\n"
-      << "    port: " << peer.port << "\n    slave_id: 7\n"
+      << "    port: " << peer.port() << "\n    slave_id: 7\n"
       << "control:\n  thruster_health:\n    enabled: false\n";
   return path;
 }
@@ -148,15 +116,15 @@ std::vector<std::string> exec_stop_post(const std::string& config) {
 TEST(ThrustersSafe, ExecStopPostDisarmsTheControllerAfterSigkill) {
   ROVCTL_REQUIRE_TOOL(test::have_pymodbus(), "/usr/bin/python3 has no usable pymodbus");
   Peer peer;
-  ASSERT_TRUE(start_peer(peer)) << "pymodbus peer did not start";
+  ASSERT_TRUE(peer.start()) << "pymodbus peer did not start";
   const std::string config = write_config(peer);
   const std::vector<std::string> stop_post = exec_stop_post(config);
   ASSERT_GE(stop_post.size(), 2u) << "deploy/rovctl.service has no ExecStopPost";
   ASSERT_EQ(stop_post[0], ROVCTL_BINARY);
 
   const pid_t run = spawn({ROVCTL_BINARY, "run", "--config", config, "--quiet", "--telemetry",
-                           peer.dir + "/telemetry.csv"},
-                          peer.dir + "/run.out");
+                           peer.dir() + "/telemetry.csv"},
+                          peer.dir() + "/run.out");
   ASSERT_GT(run, 0);
   // Armed and thrusting: armed = 1 and a non-zero command at the controller.
   const auto end = std::chrono::steady_clock::now() + 20s;
@@ -164,7 +132,7 @@ TEST(ThrustersSafe, ExecStopPostDisarmsTheControllerAfterSigkill) {
   while (!thrusting && std::chrono::steady_clock::now() < end) {
     std::this_thread::sleep_for(50ms);
     bool armed = false;
-    for (const Write& w : read_log(peer.dir + "/log")) {
+    for (const Write& w : read_log(peer.log())) {
       if (w.address == 17) armed = w.values.at(0) == 1;
       if (armed && w.address == 0) {
         for (int v : w.values) thrusting = thrusting || v != 0;
@@ -179,24 +147,24 @@ TEST(ThrustersSafe, ExecStopPostDisarmsTheControllerAfterSigkill) {
   // What SIGKILL leaves: armed = 1 (the step below is what clears it).
   std::this_thread::sleep_for(50ms);
   int armed_after_kill = -1;
-  for (const Write& w : read_log(peer.dir + "/log")) {
+  for (const Write& w : read_log(peer.log())) {
     if (w.address == 17) armed_after_kill = w.values.at(0);
   }
   EXPECT_EQ(armed_after_kill, 1);
 
-  const pid_t post = spawn(stop_post, peer.dir + "/post.out");
+  const pid_t post = spawn(stop_post, peer.dir() + "/post.out");
   ASSERT_GT(post, 0);
   const int post_code = wait_exit(post);
   std::string post_out;
   {
-    std::ifstream in(peer.dir + "/post.out");
+    std::ifstream in(peer.dir() + "/post.out");
     std::getline(in, post_out, '\0');
   }
   EXPECT_EQ(post_code, 0) << post_out;
 
   double neutral_s = -1.0, disarmed_s = -1.0;
   bool armed_again = false;
-  for (const Write& w : read_log(peer.dir + "/log")) {
+  for (const Write& w : read_log(peer.log())) {
     if (w.t < killed_s) continue;
     if (w.address == 0 && w.values == std::vector<int>(8, 0) && neutral_s < 0) neutral_s = w.t;
     if (w.address == 17 && w.values.at(0) == 0 && disarmed_s < 0) disarmed_s = w.t;
@@ -216,19 +184,19 @@ TEST(ThrustersSafe, ExecStopPostDisarmsTheControllerAfterSigkill) {
 TEST(ThrustersSafe, ExitsOneWhenTheControllerDoesNotAnswer) {
   ROVCTL_REQUIRE_TOOL(test::have_pymodbus(), "/usr/bin/python3 has no usable pymodbus");
   Peer peer;
-  ASSERT_TRUE(start_peer(peer)) << "pymodbus peer did not start";
+  ASSERT_TRUE(peer.start()) << "pymodbus peer did not start";
   const std::string config = write_config(peer);
-  ::kill(peer.pid, SIGSTOP);  // hung: connects, never answers
+  ::kill(peer.pid(), SIGSTOP);  // hung: connects, never answers
   const auto t0 = std::chrono::steady_clock::now();
   const pid_t post =
       spawn({ROVCTL_BINARY, "thrusters", "--config", config, "--safe", "--timeout-ms", "300"},
-            peer.dir + "/post.out");
+            peer.dir() + "/post.out");
   const int code = wait_exit(post);
   const auto took = std::chrono::steady_clock::now() - t0;
-  ::kill(peer.pid, SIGCONT);
+  ::kill(peer.pid(), SIGCONT);
   std::string out;
   {
-    std::ifstream in(peer.dir + "/post.out");
+    std::ifstream in(peer.dir() + "/post.out");
     std::getline(in, out, '\0');
   }
   EXPECT_EQ(code, 1) << out;

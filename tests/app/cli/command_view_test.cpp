@@ -63,6 +63,26 @@ TEST(CommandView, ReplaysAFinishedRunReadOnly) {
   fs::remove_all(out);
 }
 
+// Listening beyond loopback is said out loud by every command that serves the view, with
+// whether it takes commands.
+TEST(CommandView, ListeningOnEveryAddressPrintsTheExposureWarning) {
+  const fs::path out = fs::temp_directory_path() / "rovctl_view_exposure";
+  fs::remove_all(out);
+  ASSERT_EQ(command_sim({"--trials", "1", "--seed", "3", "--max-time", "1", "--out", out.string(),
+                         "--plots", "0", "--json"}),
+            0);
+  testing::internal::CaptureStderr();
+  const int code = command_view(
+      {"--out", out.string(), "--listen", "0.0.0.0:0", "--speed", "50", "--linger", "0.1"});
+  const std::string said = testing::internal::GetCapturedStderr();
+  EXPECT_EQ(code, 0);
+  EXPECT_NE(said.find("warning: the operator view listens on every address of this machine"),
+            std::string::npos)
+      << said;
+  EXPECT_NE(said.find("read-only: a replay takes no commands"), std::string::npos) << said;
+  fs::remove_all(out);
+}
+
 TEST(CommandView, AFolderWithoutTrialsIsAUsageError) {
   const fs::path empty = fs::temp_directory_path() / "rovctl_view_empty";
   fs::create_directories(empty);

@@ -122,7 +122,7 @@ struct BadConfig {
   std::string where;  // "file:line: key" the error must name
 };
 
-// Every bad config of issue 11, each with the file:line and key its error must name.
+// Every bad config, each with the file:line and key its error must name.
 std::vector<BadConfig> bad_configs(const Workspace& w) {
   std::vector<BadConfig> cases;
   const std::string base = w.dir.string() + "/";

@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Issue 48's flood: `rovctl sim --serve` held for 20 s, once without viewers and once with N
+"""The flood: `rovctl sim --serve` held for 20 s, once without viewers and once with N
 stream connections (camera and events alternately, read by one client thread); ABORT is posted
 10 times in each run and must be answered 200 within 100 ms, and the tick's overruns (the run's
 own telemetry, skipped_total) with streams may exceed those without by at most 1 % of ticks.

@@ -3,7 +3,7 @@
 without clients and its second half with N clients each streaming /stream.mjpg and /events.
 Reads the run's own telemetry (tick jitter = wakeup - deadline, skipped releases) per half.
 
-usage: operator_view_load.py ROVCTL [--clients 20] [--seconds 60] [--out DIR] [--no-sched-fifo]
+usage: operator_view_load.py ROVCTL [--clients 8] [--seconds 60] [--out DIR] [--no-sched-fifo]
 On demand (about 2 x SECONDS + 10 s); the figures go in the issue note, not in CI.
 """
 import argparse
@@ -40,7 +40,7 @@ def percentile(values, q):
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("rovctl")
-    ap.add_argument("--clients", type=int, default=20)
+    ap.add_argument("--clients", type=int, default=8)
     ap.add_argument("--seconds", type=float, default=60.0)
     ap.add_argument("--out", default=None)
     ap.add_argument("--no-sched-fifo", dest="sched_fifo", action="store_false",

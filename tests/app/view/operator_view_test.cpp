@@ -10,6 +10,7 @@
 #include <sys/socket.h>
 #include <unistd.h>
 
+#include <memory>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 #include <thread>
@@ -33,6 +34,14 @@ struct Fixture {
     params.token = kToken;
     params.frame_rate_hz = 30.0;
   }
+  // The view on this fixture's link, started; null (and the test failed) when it did not start.
+  std::unique_ptr<OperatorView> start_view() {
+    auto view = std::make_unique<OperatorView>(params, rig, config.marker, link);
+    std::string error;
+    if (view->start(error)) return view;
+    ADD_FAILURE() << error;
+    return nullptr;
+  }
   // One tick in the docking state with an estimate, and a frame of it.
   void publish_tick(std::uint64_t tick) {
     TelemetryRecord r;
@@ -54,6 +63,11 @@ struct Fixture {
     link.publish(r, &frame, std::chrono::nanoseconds(static_cast<std::int64_t>(tick) * 33000000));
   }
 };
+
+// POST of a command with the operator's token, as the page sends it.
+httplib::Result post_command(httplib::Client& client, const char* path) {
+  return client.Post(path, httplib::Headers{{"X-Rovctl-Token", kToken}}, "", "text/plain");
+}
 
 // Polls until `pred` holds (the pump runs every 50 ms).
 template <class Pred>
@@ -132,11 +146,10 @@ struct RawClient {
 
 TEST(OperatorView, ServesThePageStateAndPicture) {
   Fixture f;
-  OperatorView view(f.params, f.rig, f.config.marker, f.link);
-  std::string error;
-  ASSERT_TRUE(view.start(error)) << error;
-  ASSERT_GT(view.port(), 0);
-  httplib::Client client("127.0.0.1", view.port());
+  const std::unique_ptr<OperatorView> view = f.start_view();
+  ASSERT_NE(view, nullptr);
+  ASSERT_GT(view->port(), 0);
+  httplib::Client client("127.0.0.1", view->port());
   auto page = client.Get("/");
   ASSERT_TRUE(page);
   EXPECT_EQ(page->status, 200);
@@ -175,17 +188,16 @@ TEST(OperatorView, ServesThePageStateAndPicture) {
   cv::Mat grey;
   cv::cvtColor(diff, grey, cv::COLOR_BGR2GRAY);
   EXPECT_GT(cv::countNonZero(grey > 60), 100) << "sphere outlines on the picture";
-  EXPECT_GE(view.frames_encoded(), 1u);
-  view.stop();
+  EXPECT_GE(view->frames_encoded(), 1u);
+  view->stop();
 }
 
 TEST(OperatorView, CommandsNeedTheToken) {
   Fixture f;
-  OperatorView view(f.params, f.rig, f.config.marker, f.link);
-  std::string error;
-  ASSERT_TRUE(view.start(error)) << error;
+  const std::unique_ptr<OperatorView> view = f.start_view();
+  ASSERT_NE(view, nullptr);
   f.publish_tick(41);
-  httplib::Client client("127.0.0.1", view.port());
+  httplib::Client client("127.0.0.1", view->port());
   auto bare = client.Post("/abort");
   ASSERT_TRUE(bare);
   EXPECT_EQ(bare->status, 403);
@@ -194,19 +206,18 @@ TEST(OperatorView, CommandsNeedTheToken) {
   ASSERT_TRUE(wrong);
   EXPECT_EQ(wrong->status, 403);
   EXPECT_FALSE(f.link.take_abort()) << "a refused ABORT changes nothing";
-  EXPECT_EQ(view.commands_refused(), 2u);
+  EXPECT_EQ(view->commands_refused(), 2u);
   auto get = client.Get("/abort");
   ASSERT_TRUE(get);
   EXPECT_NE(get->status, 200) << "ABORT is POST only";
   EXPECT_FALSE(f.link.take_abort());
 
   Ticker ticker(f, 42);
-  auto ok = client.Post("/abort", httplib::Headers{{"X-Rovctl-Token", kToken}}, "", "text/plain");
+  auto ok = post_command(client, "/abort");
   ASSERT_TRUE(ok);
   EXPECT_EQ(ok->status, 200) << ok->body;
   EXPECT_NE(ok->body.find("\"accepted\": \"ABORT\""), std::string::npos) << ok->body;
-  auto start =
-      client.Post("/start", httplib::Headers{{"X-Rovctl-Token", kToken}}, "", "text/plain");
+  auto start = post_command(client, "/start");
   ASSERT_TRUE(start);
   EXPECT_EQ(start->status, 200) << start->body;
   ticker.stop();
@@ -215,7 +226,7 @@ TEST(OperatorView, CommandsNeedTheToken) {
   // The answer names the tick that took it.
   EXPECT_NE(ok->body.find("\"tick\": " + std::to_string(ticker.abort_tick)), std::string::npos)
       << ok->body;
-  EXPECT_EQ(view.commands_dropped(), 0u);
+  EXPECT_EQ(view->commands_dropped(), 0u);
 }
 
 // A command no tick takes within command_max_age_ms is answered 503 and withdrawn: a tick that
@@ -223,41 +234,39 @@ TEST(OperatorView, CommandsNeedTheToken) {
 TEST(OperatorView, ACommandNoTickTakesIsDroppedNotAppliedLater) {
   Fixture f;
   f.params.command_max_age_ms = 100.0;
-  OperatorView view(f.params, f.rig, f.config.marker, f.link);
-  std::string error;
-  ASSERT_TRUE(view.start(error)) << error;
+  const std::unique_ptr<OperatorView> view = f.start_view();
+  ASSERT_NE(view, nullptr);
   f.publish_tick(5);
-  httplib::Client client("127.0.0.1", view.port());
-  auto r = client.Post("/start", httplib::Headers{{"X-Rovctl-Token", kToken}}, "", "text/plain");
+  httplib::Client client("127.0.0.1", view->port());
+  auto r = post_command(client, "/start");
   ASSERT_TRUE(r);
   EXPECT_EQ(r->status, 503);
   EXPECT_NE(r->body.find("START not applied: no tick took it"), std::string::npos) << r->body;
-  EXPECT_EQ(view.commands_dropped(), 1u);
+  EXPECT_EQ(view->commands_dropped(), 1u);
   EXPECT_FALSE(f.link.take_start()) << "withdrawn: the next tick does not take it";
 }
 
-// Issue 48: with the server busy, a START timed out at the client and ran when the server came
-// to it. Here START B waits behind START A (which no tick takes: the command path is held for
+// A START that timed out at a busy server's client must not run when the server comes to it.
+// Here START B waits behind START A (which no tick takes: the command path is held for
 // command_max_age_ms); B's client gives up meanwhile; then the tick runs. B is never applied.
 TEST(OperatorView, AStartWhoseClientGaveUpIsNeverApplied) {
   Fixture f;
   f.params.command_max_age_ms = 300.0;
-  OperatorView view(f.params, f.rig, f.config.marker, f.link);
-  std::string error;
-  ASSERT_TRUE(view.start(error)) << error;
+  const std::unique_ptr<OperatorView> view = f.start_view();
+  ASSERT_NE(view, nullptr);
   f.publish_tick(5);
   int a_status = 0;
   std::thread a([&] {
-    httplib::Client client("127.0.0.1", view.port());
-    auto r = client.Post("/start", httplib::Headers{{"X-Rovctl-Token", kToken}}, "", "text/plain");
+    httplib::Client client("127.0.0.1", view->port());
+    auto r = post_command(client, "/start");
     a_status = r ? r->status : -1;
   });
   std::this_thread::sleep_for(std::chrono::milliseconds(50));  // A holds the command path
   bool b_answered = true;
   {
-    httplib::Client client("127.0.0.1", view.port());
+    httplib::Client client("127.0.0.1", view->port());
     client.set_read_timeout(std::chrono::milliseconds(100));
-    auto r = client.Post("/start", httplib::Headers{{"X-Rovctl-Token", kToken}}, "", "text/plain");
+    auto r = post_command(client, "/start");
     b_answered = static_cast<bool>(r);
   }  // B's client closes its connection: it gave up
   EXPECT_FALSE(b_answered) << "B was still waiting when its client gave up";
@@ -267,7 +276,7 @@ TEST(OperatorView, AStartWhoseClientGaveUpIsNeverApplied) {
   std::this_thread::sleep_for(std::chrono::milliseconds(600));
   ticker.stop();
   EXPECT_EQ(ticker.starts, 0) << "neither START ran after its client saw it fail";
-  EXPECT_EQ(view.commands_dropped(), 2u);
+  EXPECT_EQ(view->commands_dropped(), 2u);
 }
 
 // A request that took longer than command_max_age_ms to arrive (its first byte, then the rest)
@@ -275,11 +284,10 @@ TEST(OperatorView, AStartWhoseClientGaveUpIsNeverApplied) {
 TEST(OperatorView, ACommandOlderThanItsBoundIsDropped) {
   Fixture f;
   f.params.command_max_age_ms = 100.0;
-  OperatorView view(f.params, f.rig, f.config.marker, f.link);
-  std::string error;
-  ASSERT_TRUE(view.start(error)) << error;
+  const std::unique_ptr<OperatorView> view = f.start_view();
+  ASSERT_NE(view, nullptr);
   Ticker ticker(f, 1);
-  RawClient c(view.port());
+  RawClient c(view->port());
   const std::string request = std::string("POST /start HTTP/1.1\r\nHost: x\r\nX-Rovctl-Token: ") +
                               kToken + "\r\nContent-Length: 0\r\n\r\n";
   c.send(request.substr(0, 10));
@@ -298,30 +306,28 @@ TEST(OperatorView, ACommandOlderThanItsBoundIsDropped) {
 TEST(OperatorView, CommandsGetThroughWhateverTheViewersHold) {
   Fixture f;
   f.params.max_streams = 4;
-  OperatorView view(f.params, f.rig, f.config.marker, f.link);
-  std::string error;
-  ASSERT_TRUE(view.start(error)) << error;
+  const std::unique_ptr<OperatorView> view = f.start_view();
+  ASSERT_NE(view, nullptr);
   Ticker ticker(f, 1);
   std::vector<std::unique_ptr<RawClient>> held;
   for (int i = 0; i < 4; ++i) {  // admitted streams whose clients never read
-    held.push_back(std::make_unique<RawClient>(view.port()));
+    held.push_back(std::make_unique<RawClient>(view->port()));
     held.back()->send(i % 2 ? "GET /events HTTP/1.1\r\nHost: x\r\n\r\n"
                             : "GET /stream.mjpg HTTP/1.1\r\nHost: x\r\n\r\n");
   }
-  ASSERT_TRUE(eventually([&] { return view.streams_open() == 4; }));
-  RawClient fifth(view.port());
+  ASSERT_TRUE(eventually([&] { return view->streams_open() == 4; }));
+  RawClient fifth(view->port());
   fifth.send("GET /%65vents HTTP/1.1\r\nHost: x\r\n\r\n");  // encoded: still a stream
   const std::string refused = fifth.read_until("\r\n\r\n", std::chrono::seconds(2));
   EXPECT_EQ(refused.rfind("HTTP/1.1 503", 0), 0u) << refused;
-  EXPECT_EQ(view.streams_refused(), 1u);
+  EXPECT_EQ(view->streams_refused(), 1u);
   for (int i = 0; i < 200; ++i) {  // idle connections, and requests that never finish
-    held.push_back(std::make_unique<RawClient>(view.port()));
+    held.push_back(std::make_unique<RawClient>(view->port()));
     if (i % 2) held.back()->send("GET /state HTTP/1.1\r\nHost: x\r\nX-Slow: ");
   }
-  httplib::Client client("127.0.0.1", view.port());
+  httplib::Client client("127.0.0.1", view->port());
   client.set_read_timeout(std::chrono::seconds(2));
-  auto abort =
-      client.Post("/abort", httplib::Headers{{"X-Rovctl-Token", kToken}}, "", "text/plain");
+  auto abort = post_command(client, "/abort");
   ASSERT_TRUE(abort) << "ABORT answered while every stream is taken";
   EXPECT_EQ(abort->status, 200) << abort->body;
   EXPECT_TRUE(eventually([&] {
@@ -332,19 +338,18 @@ TEST(OperatorView, CommandsGetThroughWhateverTheViewersHold) {
   EXPECT_EQ(ticker.aborts, 1);
   held.clear();
   // An events stream learns its client left at its next write: the keep-alive, within 1 s.
-  EXPECT_TRUE(eventually([&] { return view.streams_open() == 0; }) ||
-              eventually([&] { return view.streams_open() == 0; }))
+  EXPECT_TRUE(eventually([&] { return view->streams_open() == 0; }) ||
+              eventually([&] { return view->streams_open() == 0; }))
       << "closed streams end";
 }
 
-// What held under the safety probes of issue 48 and must keep holding.
+// What a safety probe from outside must keep finding.
 TEST(OperatorView, RefusesWhatItDoesNotServe) {
   Fixture f;
-  OperatorView view(f.params, f.rig, f.config.marker, f.link);
-  std::string error;
-  ASSERT_TRUE(view.start(error)) << error;
+  const std::unique_ptr<OperatorView> view = f.start_view();
+  ASSERT_NE(view, nullptr);
   f.publish_tick(3);
-  httplib::Client client("127.0.0.1", view.port());
+  httplib::Client client("127.0.0.1", view->port());
   for (const char* path : {"/../../etc/passwd", "/%2e%2e/%2e%2e/etc/passwd", "/..%2f..%2fetc"}) {
     auto r = client.Get(path);
     ASSERT_TRUE(r) << path;
@@ -359,12 +364,12 @@ TEST(OperatorView, RefusesWhatItDoesNotServe) {
       EXPECT_EQ(name.rfind("Access-Control-", 0), std::string::npos) << name << ": " << value;
     }
   }
-  RawClient big(view.port());
+  RawClient big(view->port());
   big.send("GET /state HTTP/1.1\r\nHost: x\r\nX-Big: " + std::string(1 << 20, 'a') + "\r\n\r\n");
   const std::string answer = big.read_until("\r\n\r\n", std::chrono::seconds(5));
   EXPECT_EQ(answer.rfind("HTTP/1.1 400", 0), 0u) << answer.substr(0, 80);
   // Two requests in one write on one kept-alive connection: both answered, in order.
-  RawClient pipelined(view.port());
+  RawClient pipelined(view->port());
   pipelined.send("GET /info HTTP/1.1\r\nHost: x\r\n\r\nGET /nothing HTTP/1.1\r\nHost: x\r\n\r\n");
   const std::string both = pipelined.read_until("404", std::chrono::seconds(2));
   EXPECT_EQ(both.rfind("HTTP/1.1 200", 0), 0u) << both;
@@ -390,10 +395,9 @@ TEST(OperatorView, SaysWhatItExposes) {
 TEST(OperatorView, WithoutATokenTheViewIsReadOnly) {
   Fixture f;
   f.params.token.clear();
-  OperatorView view(f.params, f.rig, f.config.marker, f.link);
-  std::string error;
-  ASSERT_TRUE(view.start(error)) << error;
-  httplib::Client client("127.0.0.1", view.port());
+  const std::unique_ptr<OperatorView> view = f.start_view();
+  ASSERT_NE(view, nullptr);
+  httplib::Client client("127.0.0.1", view->port());
   auto r = client.Post("/abort", httplib::Headers{{"X-Rovctl-Token", ""}}, "", "text/plain");
   ASSERT_TRUE(r);
   EXPECT_EQ(r->status, 403);
@@ -403,9 +407,8 @@ TEST(OperatorView, WithoutATokenTheViewIsReadOnly) {
 
 TEST(OperatorView, StreamsEventsAndPictures) {
   Fixture f;
-  OperatorView view(f.params, f.rig, f.config.marker, f.link);
-  std::string error;
-  ASSERT_TRUE(view.start(error)) << error;
+  const std::unique_ptr<OperatorView> view = f.start_view();
+  ASSERT_NE(view, nullptr);
   std::atomic<bool> publishing{true};
   std::thread ticks([&] {
     for (std::uint64_t t = 1; publishing; ++t) {
@@ -413,7 +416,7 @@ TEST(OperatorView, StreamsEventsAndPictures) {
       std::this_thread::sleep_for(std::chrono::milliseconds(33));
     }
   });
-  httplib::Client client("127.0.0.1", view.port());
+  httplib::Client client("127.0.0.1", view->port());
   std::string events;
   client.Get("/events", [&](const char* data, std::size_t n) {
     events.append(data, n);
@@ -430,16 +433,15 @@ TEST(OperatorView, StreamsEventsAndPictures) {
   EXPECT_NE(events.find("\n\ndata: {"), std::string::npos) << "a second event follows";
   EXPECT_EQ(mjpeg.rfind("--rovctlframe\r\nContent-Type: image/jpeg\r\n", 0), 0u);
   EXPECT_NE(mjpeg.find("\xff\xd8"), std::string::npos) << "a JPEG start marker";
-  view.stop();
-  EXPECT_TRUE(eventually([&] { return view.streams_open() == 0; }));
+  view->stop();
+  EXPECT_TRUE(eventually([&] { return view->streams_open() == 0; }));
 }
 
 TEST(OperatorView, RegistersAsABlueOsService) {
   Fixture f;
-  OperatorView view(f.params, f.rig, f.config.marker, f.link);
-  std::string error;
-  ASSERT_TRUE(view.start(error)) << error;
-  httplib::Client client("127.0.0.1", view.port());
+  const std::unique_ptr<OperatorView> view = f.start_view();
+  ASSERT_NE(view, nullptr);
+  httplib::Client client("127.0.0.1", view->port());
   auto r = client.Get("/register_service");
   ASSERT_TRUE(r);
   EXPECT_EQ(r->status, 200);

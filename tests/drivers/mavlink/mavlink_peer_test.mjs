@@ -1,6 +1,6 @@
 // An independent MAVLink peer: node-mavlink (npm) against rovctl's codec over loopback UDP.
-// rovctl's side (mavlink_peer_exchange) listens on udpin; this peer sends each message of
-// issue 12 with known values (plus a broken CRC, a signed frame and leading garbage, which
+// rovctl's side (mavlink_peer_exchange) listens on udpin; this peer sends each message
+// rovctl speaks with known values (plus a broken CRC, a signed frame and leading garbage, which
 // rovctl must refuse), rovctl checks them, then sends the same messages back from 255/190 and
 // this peer checks ids, lengths, truncation, CRCs, sys/comp ids, sequence and values.
 // Usage: node mavlink_peer_test.mjs MAVLINK_PEER_EXCHANGE   (exit 77: skipped)
