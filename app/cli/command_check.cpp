@@ -12,6 +12,7 @@
 #include "app/runtime/errors.hpp"
 #include "app/runtime/vehicle_backends.hpp"
 #include "drivers/mavlink/ardusub_failsafe_params.hpp"
+#include "drivers/mavlink/ardusub_gcs_id.hpp"
 #include "drivers/mavlink/ardusub_thruster_bus.hpp"
 
 namespace rovctl::app {
@@ -39,6 +40,14 @@ void check_ardusub_failsafes(Checker& check, drivers::ArdusubThrusterBus& bus,
        drivers::judge_ardusub_failsafes(params, values)) {
     check.line(v.safe, "ArduSub " + v.name, v.reason);
   }
+  // A GCS id ArduSub does not obey means every command is ignored without a word: read it under
+  // its 4.7 name when the older one is not answered.
+  std::array<std::optional<float>, 2> gcs_id;
+  gcs_id[0] = bus.read_parameter(drivers::kArdusubGcsIdParams[0]);
+  if (!gcs_id[0]) gcs_id[1] = bus.read_parameter(drivers::kArdusubGcsIdParams[1]);
+  const drivers::ArdusubFailsafeVerdict v =
+      drivers::judge_ardusub_gcs_id(params.gcs_system_id, gcs_id);
+  check.line(v.safe, "ArduSub " + v.name, v.reason);
 }
 
 }  // namespace

@@ -93,6 +93,9 @@ void MockArdusubEndpoint::take(const mav::Frame& f, std::chrono::nanoseconds now
     std::uint8_t result = kMavResultUnsupported;
     if (c.command == mav::kCmdComponentArmDisarm) {
       result = vehicle_.arm(c.params[0] == 1.0F, now) ? kMavResultAccepted : 4;
+    } else if (c.command == mav::kCmdDoSetMode && c.params[0] == mav::kModeFlagCustomModeEnabled) {
+      vehicle_.set_mode(static_cast<std::uint32_t>(std::lround(c.params[1])));
+      result = kMavResultAccepted;
     } else if (c.command == mav::kCmdSetMessageInterval) {
       const auto id = static_cast<std::uint32_t>(std::lround(c.params[0]));
       const float us = c.params[1];

@@ -42,9 +42,6 @@ std::unique_ptr<hal::mock::SimulatedHal> make_sim(const AppConfig& config,
 void fly_through_mock_ardusub(const AppConfig& config, VehicleBackends& b) {
   const drivers::ArdusubParams& bus_params = config.thruster_bus.ardusub;
   b.mock_ardusub = std::make_unique<hal::mock::MockArdusub>(b.sim->world(), config.sim.ardusub);
-  // The operator has put ArduSub in the mode rovctl requires before it arms.
-  b.mock_ardusub->set_mode(
-      static_cast<std::uint32_t>(drivers::ardusub_custom_mode(bus_params.flight_mode)));
   b.ardusub_peer = std::make_unique<MockArdusubEndpoint>(
       *b.mock_ardusub, *b.clock, bus_params.gcs_system_id, bus_params.vehicle_system_id);
   std::string error;

@@ -89,7 +89,9 @@ VehicleLoop::VehicleLoop(const AppConfig& config, const hal::StereoRig& rig,
 
 bool VehicleLoop::arm(std::string& error) {
   if (bus_.write(neutral_) == hal::BusStatus::fault || bus_.arm(true) == hal::BusStatus::fault) {
-    error = bus_.name() + ": could not arm the thrusters";
+    const char* why = bus_.fault_reason();
+    error = bus_.name() + ": could not arm the thrusters" +
+            (why != nullptr && why[0] != '\0' ? std::string(" (") + why + ")" : std::string());
     return false;
   }
   armed_ = true;

@@ -76,7 +76,8 @@ void describe(hal::ParamVisitor& v, ArdusubParams& p) {
   v.param("vehicle_component_id", p.vehicle_component_id,
           {"-", 0, 255, "ArduSub's component id (1: MAV_COMP_ID_AUTOPILOT1)"});
   v.param("flight_mode", p.flight_mode,
-          "ArduSub mode required to arm and kept while armed; another mode is a bus fault",
+          "ArduSub mode rovctl sets (DO_SET_MODE) before it arms and that must stay while armed; "
+          "another mode while armed is a bus fault",
           {"stabilize", "alt_hold", "manual"});
   v.param("pilot_gain", p.pilot_gain,
           {"-", 0.1, 1.0, "ArduSub's joystick gain (JS_GAIN_DEFAULT), scales every axis"});
@@ -88,12 +89,19 @@ void describe(hal::ParamVisitor& v, ArdusubParams& p) {
             [&p](hal::ParamVisitor& s) { describe(s, p.gcs_status); });
   v.param("link_timeout_ms", p.link_timeout_ms,
           {"ms", 1100, 30000,
-           "no ArduSub HEARTBEAT (sent at 1 Hz) for this long is link lost: a bus fault"});
+           "no ArduSub HEARTBEAT (sent at 1 Hz) for this long is link lost: a bus fault; keep it "
+           "under ArduSub's FS_PILOT_TIMEOUT"});
+  v.param("stream_timeout_ms", p.stream_timeout_ms,
+          {"ms", 40, 5000,
+           "with sensors.backend ardusub: no ATTITUDE_QUATERNION (the stream rovctl asks for at "
+           "sensors.ardusub.stream_interval_ms) for this long is ArduSub silent: a bus fault, "
+           "neutral and the failsafe; a few stream intervals"});
   v.param("heartbeat_period_ms", p.heartbeat_period_ms,
           {"ms", 100, 5000, "period of rovctl's own HEARTBEAT as the ground station"});
   v.param("ack_timeout_ms", p.ack_timeout_ms,
           {"ms", 10, 5000,
-           "wait for ArduSub's COMMAND_ACK of arm or disarm, on the bus's I/O thread; below "
+           "wait for ArduSub's COMMAND_ACK of arm or disarm, and for its HEARTBEAT to show the "
+           "flight_mode asked with DO_SET_MODE, on the bus's I/O thread; below "
            "thruster_bus.timing.close_timeout_ms"});
 }
 

@@ -59,7 +59,8 @@ struct ArdusubParams {
   ArdusubAxisScale scale;
   ArdusubRcOverrideParams rc_override;
   GcsStatusParams gcs_status;
-  int link_timeout_ms = 2500;      // no ArduSub HEARTBEAT (1 Hz) for this long: link lost
+  int link_timeout_ms = 1500;      // no ArduSub HEARTBEAT (1 Hz) for this long: link lost
+  int stream_timeout_ms = 200;     // no ATTITUDE_QUATERNION (asked at 20 Hz) this long: silent
   int heartbeat_period_ms = 1000;  // our own HEARTBEAT as the GCS
   int ack_timeout_ms = 300;        // wait for COMMAND_ACK of arm/disarm (on the I/O thread)
 };

@@ -3,7 +3,9 @@
 // did not ask for.
 #include "drivers/mavlink/ardusub_thruster_bus.hpp"
 
+#include <cstdio>
 #include <stdexcept>
+#include <string_view>
 #include <thread>
 
 namespace rovctl::drivers {
@@ -46,6 +48,8 @@ const char* to_string(ArdusubFault f) {
       return "none";
     case ArdusubFault::link_lost:
       return "ArduSub link lost";
+    case ArdusubFault::stream_silent:
+      return "ArduSub silent";
     case ArdusubFault::disarmed_under_us:
       return "ArduSub disarmed";
     case ArdusubFault::mode_changed:
@@ -137,9 +141,11 @@ void ArdusubThrusterBus::pump() {
     if (io != mavlink::MavlinkLink::Io::ok) break;
     if (f.header.system_id != params_.vehicle_system_id) continue;
     if (sensors_ != nullptr) sensors_->accept(f);
+    if (f.header.message_id == mavlink::AttitudeQuaternion::kId) last_attitude_ = now;
     mavlink::Heartbeat hb;
     mavlink::CommandAck ack;
     mavlink::ParamValue value;
+    mavlink::StatusText text;
     if (f.header.component_id == params_.vehicle_component_id && mavlink::unpack(f, hb)) {
       ++counters_.heartbeats_received;
       heartbeat_seen_ = true;
@@ -156,6 +162,17 @@ void ArdusubThrusterBus::pump() {
       if (ack.command == mavlink::kCmdComponentArmDisarm) {
         arm_result_ = ack.result;
         ++arm_acks_;
+      } else if (ack.command == mavlink::kCmdDoSetMode) {
+        mode_result_ = ack.result;
+        ++mode_acks_;
+      }
+    } else if (mavlink::unpack(f, text)) {
+      // ArduSub says why it will not arm before its COMMAND_ACK ("PreArm: Gyros inconsistent",
+      // "Arm: Leak Detected"); kept for the refusal's reason.
+      const std::string_view t = mavlink::text_of(text.text);
+      if (t.starts_with("PreArm") || t.starts_with("Arm")) {
+        prearm_text_.fill('\0');
+        t.copy(prearm_text_.data(), prearm_text_.size() - 1);
       }
     } else if (awaited_param_[0] != '\0' && mavlink::unpack(f, value) &&
                value.param_id == awaited_param_) {
@@ -274,13 +291,109 @@ hal::BusStatus ArdusubThrusterBus::arm(bool armed) {
   mode_changed_ = false;
   arm_refused_ = false;
   if (status() == hal::BusStatus::fault) return hal::BusStatus::fault;
-  if (vehicle_mode_ != static_cast<std::uint32_t>(required_mode_) || !send_neutral() ||
-      !send_arm(true, wait)) {
+  if (!set_flight_mode()) {
     arm_refused_ = true;
+    char what[96];
+    std::snprintf(what, sizeof(what), "ArduSub stayed in mode %u after DO_SET_MODE %s (%d)%s",
+                  static_cast<unsigned>(vehicle_mode_), params_.flight_mode.c_str(), required_mode_,
+                  mode_acks_ > 0 ? ", refused" : ", no answer");
+    explain_refusal(what);
+    return hal::BusStatus::fault;
+  }
+  prearm_text_.fill('\0');
+  const std::uint64_t acks_before = arm_acks_;
+  if (!send_neutral() || !send_arm(true, wait)) {
+    arm_refused_ = true;
+    // Its PreArm STATUSTEXT may trail the ACK by a frame or two.
+    for (int i = 0; i < 20 && prearm_text_[0] == '\0'; ++i) {
+      wait_a_little();
+      pump();
+    }
+    char what[96];
+    if (arm_acks_ == acks_before) {
+      std::snprintf(what, sizeof(what), "ArduSub refused arm: no COMMAND_ACK within %d ms",
+                    params_.ack_timeout_ms);
+    } else {
+      std::snprintf(what, sizeof(what), "ArduSub refused arm (MAV_RESULT %u)",
+                    static_cast<unsigned>(arm_result_));
+    }
+    explain_refusal(what);
     return hal::BusStatus::fault;
   }
   armed_ = true;
   return status();
+}
+
+bool ArdusubThrusterBus::set_flight_mode() {
+  const auto required = static_cast<std::uint32_t>(required_mode_);
+  if (vehicle_mode_ == required) return true;
+  if (!send(mavlink::do_set_mode(static_cast<std::uint8_t>(params_.vehicle_system_id),
+                                 static_cast<std::uint8_t>(params_.vehicle_component_id),
+                                 required))) {
+    return false;
+  }
+  // ArduSub beats at 1 Hz: its ACK is the answer in time to arm, and the watch on its HEARTBEAT
+  // (mode_changed) confirms the mode from the next beat on.
+  const std::uint64_t acks_before = mode_acks_;
+  const auto deadline = Clock::now() + std::chrono::milliseconds(params_.ack_timeout_ms);
+  while (vehicle_mode_ != required && mode_acks_ == acks_before && Clock::now() < deadline) {
+    wait_a_little();
+    pump();
+  }
+  return vehicle_mode_ == required ||
+         (mode_acks_ != acks_before && mode_result_ == kMavResultAccepted);
+}
+
+void ArdusubThrusterBus::explain_refusal(const char* what) {
+  std::array<char, 160>& out = reasons_[next_reason_];
+  next_reason_ ^= 1U;
+  if (prearm_text_[0] != '\0') {
+    std::snprintf(out.data(), out.size(), "%s: %s", what, prearm_text_.data());
+  } else {
+    std::snprintf(out.data(), out.size(), "%s", what);
+  }
+  explained_ = ArdusubFault::arm_refused;
+  fault_reason_.store(out.data(), std::memory_order_release);
+}
+
+void ArdusubThrusterBus::explain(ArdusubFault f, Clock::time_point now) {
+  if (f == explained_) return;
+  explained_ = f;
+  // None keeps the last reason (the tick may still be logging it); a refusal was said with
+  // ArduSub's own words by explain_refusal().
+  if (f == ArdusubFault::none || f == ArdusubFault::arm_refused)
+    return;  // explain_refusal() said it, with ArduSub's words
+  std::array<char, 160>& out = reasons_[next_reason_];
+  next_reason_ ^= 1U;
+  const auto ms = [now](Clock::time_point since) {
+    return static_cast<long long>(
+        std::chrono::duration_cast<std::chrono::milliseconds>(now - since).count());
+  };
+  switch (f) {
+    case ArdusubFault::link_lost:
+      if (heartbeat_seen_) {
+        std::snprintf(out.data(), out.size(), "%s: no HEARTBEAT for %lld ms (limit %d ms)",
+                      to_string(f), ms(last_heartbeat_), params_.link_timeout_ms);
+      } else {
+        std::snprintf(out.data(), out.size(), "%s: no HEARTBEAT yet", to_string(f));
+      }
+      break;
+    case ArdusubFault::stream_silent:
+      std::snprintf(out.data(), out.size(),
+                    "%s: no ATTITUDE_QUATERNION for %lld ms (limit %d ms; HEARTBEAT %lld ms ago)",
+                    to_string(f), ms(last_attitude_), params_.stream_timeout_ms,
+                    ms(last_heartbeat_));
+      break;
+    case ArdusubFault::mode_changed:
+      std::snprintf(out.data(), out.size(), "%s: mode %u, not %s (%d)", to_string(f),
+                    static_cast<unsigned>(vehicle_mode_), params_.flight_mode.c_str(),
+                    required_mode_);
+      break;
+    default:
+      std::snprintf(out.data(), out.size(), "%s", to_string(f));
+      break;
+  }
+  fault_reason_.store(out.data(), std::memory_order_release);
 }
 
 std::optional<float> ArdusubThrusterBus::read_parameter(std::string_view id) {
@@ -306,9 +419,16 @@ std::optional<float> ArdusubThrusterBus::read_parameter(std::string_view id) {
 }
 
 ArdusubFault ArdusubThrusterBus::fault() const {
+  const auto now = Clock::now();
   if (!heartbeat_seen_ ||
-      Clock::now() - last_heartbeat_ > std::chrono::milliseconds(params_.link_timeout_ms)) {
+      now - last_heartbeat_ > std::chrono::milliseconds(params_.link_timeout_ms)) {
     return ArdusubFault::link_lost;
+  }
+  // The attitude stream (asked at the tick's pace) tells a silent ArduSub long before its 1 Hz
+  // HEARTBEAT can; open() waited for its first message.
+  if (sensors_ != nullptr && opened_ &&
+      now - last_attitude_ > std::chrono::milliseconds(params_.stream_timeout_ms)) {
+    return ArdusubFault::stream_silent;
   }
   if (disarmed_under_us_) return ArdusubFault::disarmed_under_us;
   if (mode_changed_) return ArdusubFault::mode_changed;
@@ -319,10 +439,8 @@ ArdusubFault ArdusubThrusterBus::fault() const {
 hal::BusStatus ArdusubThrusterBus::status() {
   if (!opened_) return hal::BusStatus::fault;
   const ArdusubFault f = fault();
-  if (f != ArdusubFault::none) {
-    fault_reason_.store(to_string(f), std::memory_order_relaxed);
-    return hal::BusStatus::fault;
-  }
+  explain(f, Clock::now());
+  if (f != ArdusubFault::none) return hal::BusStatus::fault;
   return send_failed_ ? hal::BusStatus::degraded : hal::BusStatus::ok;
 }
 

@@ -5,6 +5,7 @@
 // the link, so it also feeds ArduSub's sensors (ArdusubSensors) when they are attached.
 #pragma once
 
+#include <array>
 #include <atomic>
 #include <chrono>
 #include <cstddef>
@@ -29,7 +30,14 @@
 namespace rovctl::drivers {
 
 // Why the bus reports a fault; none while it does not.
-enum class ArdusubFault { none, link_lost, disarmed_under_us, mode_changed, arm_refused };
+enum class ArdusubFault {
+  none,
+  link_lost,
+  stream_silent,
+  disarmed_under_us,
+  mode_changed,
+  arm_refused
+};
 const char* to_string(ArdusubFault f);
 
 struct ArdusubCounters {
@@ -55,7 +63,9 @@ class ArdusubThrusterBus final : public hal::ThrusterBus {
   bool open(std::string& error) override;
   // Sends neutral, then ARM_DISARM, and waits at most ack_timeout_ms for its COMMAND_ACK. Runs
   // on the bus I/O thread (BusIoThread), never on the tick. Arming needs the link and the
-  // configured flight mode.
+  // configured flight mode: when ArduSub is in another (it boots in MANUAL) it is asked with
+  // DO_SET_MODE first and must show the mode in its HEARTBEAT within ack_timeout_ms. A refusal
+  // says why in fault_reason() (ArduSub's COMMAND_ACK result and its "PreArm:" STATUSTEXT).
   hal::BusStatus arm(bool armed) override;
   // One MANUAL_CONTROL (neutral while disarmed), our HEARTBEAT when due; drains what arrived.
   hal::BusStatus write(const hal::ThrusterCommand& command) override;
@@ -83,9 +93,10 @@ class ArdusubThrusterBus final : public hal::ThrusterBus {
 
   std::uint16_t local_port() const { return link_.local_port(); }
   ArdusubFault fault() const;
-  // The last fault status() reported, told apart (link lost, disarmed, mode, arm refused).
+  // The last fault status() reported, told apart and with its figures ("ArduSub silent: no
+  // ATTITUDE_QUATERNION for 260 ms", "ArduSub refused arm: ... PreArm: ...").
   const char* fault_reason() const override {
-    return fault_reason_.load(std::memory_order_relaxed);
+    return fault_reason_.load(std::memory_order_acquire);
   }
   const ArdusubCounters& counters() const { return counters_; }
   bool armed() const { return armed_; }
@@ -110,6 +121,11 @@ class ArdusubThrusterBus final : public hal::ThrusterBus {
   hal::BusStatus status();
 
   bool request_streams();
+  // Asks for the configured flight mode unless ArduSub shows it; true once its HEARTBEAT does.
+  bool set_flight_mode();
+  // Writes the reason for `f` (with its figures) where fault_reason() points; only on a change.
+  void explain(ArdusubFault f, Clock::time_point now);
+  void explain_refusal(const char* what);
 
   ArdusubParams params_;
   bool thrusters_mode_ = false;
@@ -138,13 +154,21 @@ class ArdusubThrusterBus final : public hal::ThrusterBus {
   bool disarmed_under_us_ = false;
   bool mode_changed_ = false;
   bool arm_refused_ = false;
-  // Written where status() runs (the bus I/O thread), read by the tick.
+  Clock::time_point last_attitude_{};   // ATTITUDE_QUATERNION's last arrival
+  std::array<char, 51> prearm_text_{};  // ArduSub's last "PreArm:"/"Arm:" STATUSTEXT
+  ArdusubFault explained_ = ArdusubFault::none;
+  // Written where status() runs (the bus I/O thread), read by the tick: two buffers, so the one
+  // the tick may be reading is never the one being written.
+  std::array<std::array<char, 160>, 2> reasons_{};
+  std::size_t next_reason_ = 0;
   std::atomic<const char*> fault_reason_{nullptr};
   std::array<char, 16> awaited_param_{};  // read_parameter()'s id while it waits
   bool param_answered_ = false;
   float param_value_ = 0.0F;
   std::uint64_t arm_acks_ = 0;  // COMMAND_ACKs of ARM_DISARM
   std::uint8_t arm_result_ = 0;
+  std::uint64_t mode_acks_ = 0;  // COMMAND_ACKs of DO_SET_MODE
+  std::uint8_t mode_result_ = 0;
   ArdusubCounters counters_;
 };
 

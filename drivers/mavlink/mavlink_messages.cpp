@@ -14,6 +14,17 @@ CommandLong arm_disarm(std::uint8_t target_system, std::uint8_t target_component
   return c;
 }
 
+CommandLong do_set_mode(std::uint8_t target_system, std::uint8_t target_component,
+                        std::uint32_t custom_mode) {
+  CommandLong c;
+  c.command = kCmdDoSetMode;
+  c.target_system = target_system;
+  c.target_component = target_component;
+  c.params[0] = kModeFlagCustomModeEnabled;
+  c.params[1] = static_cast<float>(custom_mode);
+  return c;
+}
+
 CommandLong set_message_interval(std::uint8_t target_system, std::uint8_t target_component,
                                  std::uint32_t message_id, float interval_us) {
   CommandLong c;

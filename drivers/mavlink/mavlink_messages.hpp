@@ -16,10 +16,14 @@
 namespace rovctl::drivers::mavlink {
 
 // MAV_CMD values used with COMMAND_LONG.
+constexpr std::uint16_t kCmdDoSetMode = 176;
 constexpr std::uint16_t kCmdComponentArmDisarm = 400;
 constexpr std::uint16_t kCmdSetMessageInterval = 511;
 // param2 of ARM_DISARM that forces arming/disarming past the pre-arm checks.
 constexpr float kArmDisarmForceMagic = 21196.0F;
+// DO_SET_MODE's param1 saying param2 is the autopilot's own custom_mode
+// (MAV_MODE_FLAG_CUSTOM_MODE_ENABLED).
+constexpr float kModeFlagCustomModeEnabled = 1.0F;
 // HEARTBEAT.base_mode bit set while the vehicle is armed (MAV_MODE_FLAG_SAFETY_ARMED).
 constexpr std::uint8_t kModeFlagSafetyArmed = 0x80;
 
@@ -262,6 +266,9 @@ std::size_t write_message(FrameWriter& writer, const Message& m, std::span<std::
 // COMMAND_LONG MAV_CMD_COMPONENT_ARM_DISARM (param1 1 arm / 0 disarm; force sets param2).
 CommandLong arm_disarm(std::uint8_t target_system, std::uint8_t target_component, bool arm,
                        bool force);
+// COMMAND_LONG MAV_CMD_DO_SET_MODE to the autopilot's `custom_mode` (ArduSub: STABILIZE 0, ...).
+CommandLong do_set_mode(std::uint8_t target_system, std::uint8_t target_component,
+                        std::uint32_t custom_mode);
 // COMMAND_LONG MAV_CMD_SET_MESSAGE_INTERVAL: `interval_us` -1 stops the stream, 0 restores its
 // default rate.
 CommandLong set_message_interval(std::uint8_t target_system, std::uint8_t target_component,

@@ -12,19 +12,23 @@ export async function loadMavlink() {
   }
 }
 
+const MAV_CMD_DO_SET_MODE = 176;
 const MAV_CMD_COMPONENT_ARM_DISARM = 400;
 const MAV_CMD_SET_MESSAGE_INTERVAL = 511;
 const ARMED_FLAG = 0x80;          // MAV_MODE_FLAG_SAFETY_ARMED
 const CUSTOM_MODE_ENABLED = 0x01;  // MAV_MODE_FLAG_CUSTOM_MODE_ENABLED
 
 export class FakeArduSub {
-  // params: { NAME: value } answered to PARAM_REQUEST_READ; customMode: the mode it reports.
-  constructor(mavlink, { params = {}, customMode = 0 } = {}) {
+  // params: { NAME: value } answered to PARAM_REQUEST_READ; customMode: the mode it reports
+  // (ArduSub boots in MANUAL, 19), changed by DO_SET_MODE; preArm: a reason it refuses to arm,
+  // said first as ArduSub does (STATUSTEXT "PreArm: ...", then COMMAND_ACK FAILED).
+  constructor(mavlink, { params = {}, customMode = 0, preArm = null } = {}) {
     this.m = mavlink;
     this.registry = { ...mavlink.minimal.REGISTRY, ...mavlink.common.REGISTRY };
     this.protocol = new mavlink.MavLinkProtocolV2(1, 1);
     this.params = params;
     this.customMode = customMode;
+    this.preArm = preArm;
     this.armed = false;
     this.beating = true;
     this.seq = 0;
@@ -45,6 +49,14 @@ export class FakeArduSub {
     this.port = this.socket.address().port;
     this.beatTimer = setInterval(() => { if (this.beating) this.sendHeartbeat(); }, 1000);
     return this.port;
+  }
+
+  // Every stream and the HEARTBEAT stop at once, as an ArduSub gone silent; returns when.
+  silence() {
+    this.beating = false;
+    for (const t of this.intervals.values()) clearInterval(t);
+    this.intervals.clear();
+    return this.now();
   }
 
   stop() {
@@ -133,9 +145,20 @@ export class FakeArduSub {
         this.errors.push(`COMMAND_LONG to ${msg.targetSystem}/${msg.targetComponent}`);
       }
       if (msg.command === MAV_CMD_COMPONENT_ARM_DISARM) {
+        if (msg._param1 === 1 && this.preArm) {
+          this.send(Object.assign(new this.m.common.StatusText(), {
+            severity: 2, text: `PreArm: ${this.preArm}`, id: 0, chunkSeq: 0 }));
+          this.ack(msg.command, 4);  // MAV_RESULT_FAILED
+          return;
+        }
         this.armed = msg._param1 === 1;
         this.ack(msg.command);
         this.sendHeartbeat();  // the new state at once, as ArduSub's next beat would show it
+      } else if (msg.command === MAV_CMD_DO_SET_MODE) {
+        if (msg._param1 !== 1) this.errors.push(`DO_SET_MODE base mode ${msg._param1}, not custom (1)`);
+        this.customMode = msg._param2;
+        this.ack(msg.command);
+        this.sendHeartbeat();
       } else if (msg.command === MAV_CMD_SET_MESSAGE_INTERVAL) {
         this.stream(msg._param1, msg._param2);
         this.ack(msg.command);
@@ -175,9 +198,9 @@ export class FakeArduSub {
     }
   }
 
-  ack(command) {
+  ack(command, result = 0) {
     this.send(Object.assign(new this.m.common.CommandAck(), {
-      command, result: 0, progress: 0, resultParam2: 0, targetSystem: 255, targetComponent: 190 }));
+      command, result, progress: 0, resultParam2: 0, targetSystem: 255, targetComponent: 190 }));
   }
 
   stream(messageId, intervalUs) {

@@ -1,6 +1,7 @@
 // `rovctl check` on the ArduSub bus against a fake ArduSub written with node-mavlink: it reads
 // FS_PILOT_INPUT, FS_PILOT_TIMEOUT and RC_OVERRIDE_TIME by PARAM_REQUEST_READ, names each with
-// whether it is safe, passes with safe values, fails (exit 2) with FS_PILOT_INPUT = 0, arms nothing.
+// whether it is safe, passes with safe values, fails (exit 2) with FS_PILOT_INPUT = 0, arms nothing;
+// and the GCS id (SYSID_MYGCS, or MAV_GCS_SYSID from 4.7) against the id rovctl sends as.
 // Usage: node ardusub_peer_check_test.mjs ROVCTL SOURCE_DIR WORK_DIR   (exit 77: skipped)
 import { spawn } from "node:child_process";
 import fs from "node:fs";
@@ -52,11 +53,22 @@ async function check(name, params) {
 }
 
 {
-  const { code, out } = await check("safe", { FS_PILOT_INPUT: 2, FS_PILOT_TIMEOUT: 0.5, RC_OVERRIDE_TIME: 3 });
+  const { code, out } = await check("safe", { FS_PILOT_INPUT: 2, FS_PILOT_TIMEOUT: 0.5, RC_OVERRIDE_TIME: 3, SYSID_MYGCS: 255 });
   for (const n of ["FS_PILOT_INPUT", "FS_PILOT_TIMEOUT", "RC_OVERRIDE_TIME"]) {
     expect(new RegExp(`^PASS  ArduSub ${n}: `, "m").test(out), `safe values: ${n} named and PASS`);
   }
+  expect(/^PASS  ArduSub SYSID_MYGCS: 255: /m.test(out), "SYSID_MYGCS 255: named and PASS");
   expect(code === 0, `safe values: rovctl check exits 0 (got ${code})`);
+}
+// The GCS id under both of its names (MAV_GCS_SYSID from ArduSub 4.7): a mismatch means ArduSub
+// ignores every command rovctl sends.
+const safeFailsafes = { FS_PILOT_INPUT: 2, FS_PILOT_TIMEOUT: 0.5, RC_OVERRIDE_TIME: 3 };
+for (const [param, value, pass] of [["SYSID_MYGCS", 254, false], ["MAV_GCS_SYSID", 255, true],
+                                    ["MAV_GCS_SYSID", 1, false]]) {
+  const { code, out } = await check(`gcs-${param}-${value}`, { ...safeFailsafes, [param]: value });
+  const line = new RegExp(`^${pass ? "PASS" : "FAIL"}  ArduSub ${param}: ${value}: `, "m");
+  expect(line.test(out), `${param} ${value}: named and ${pass ? "PASS" : "FAIL"}`);
+  expect(code === (pass ? 0 : 2), `${param} ${value}: rovctl check exits ${pass ? 0 : 2} (got ${code})`);
 }
 {
   const { code, out } = await check("unsafe", { FS_PILOT_INPUT: 0, FS_PILOT_TIMEOUT: 0.5, RC_OVERRIDE_TIME: 3 });

@@ -1,8 +1,9 @@
 // `rovctl run` on the ArduSub bus and sensors against a fake ArduSub written with node-mavlink:
 // ids, lengths, CRCs, 255/190 -> 1/1, axis ranges, the 30 Hz rate, neutral + disarm on SIGTERM,
-// and safe within 2 ticks when the peer's HEARTBEAT stops or it reports itself disarmed; and the
-// status to the ground station (1/191): HEARTBEAT at 1 Hz, the four values at 4 Hz, a STATUSTEXT
-// naming each failsafe.
+// and safe within 2 ticks when the peer's HEARTBEAT stops, it goes silent altogether or it reports
+// itself disarmed; booted in MANUAL it is set to the flight mode before the arm, and a PreArm
+// refusal is in rovctl's error; and the status to the ground station (1/191): HEARTBEAT at 1 Hz,
+// the four values at 4 Hz, a STATUSTEXT naming each failsafe.
 // Usage: node ardusub_peer_run_test.mjs ROVCTL SOURCE_DIR WORK_DIR   (exit 77: skipped)
 import { spawn } from "node:child_process";
 import fs from "node:fs";
@@ -16,6 +17,7 @@ if (!mavlink) { console.log("SKIP: node-mavlink not installed (npm ci --prefix t
 
 const PERIOD_MS = 33;            // scheduler.period_ms
 const LINK_TIMEOUT_MS = 1500;    // thruster_bus.ardusub.link_timeout_ms
+const STREAM_TIMEOUT_MS = 200;   // thruster_bus.ardusub.stream_timeout_ms
 let failures = 0;
 function expect(cond, what) { console.log(`${cond ? "ok" : "FAIL"}: ${what}`); if (!cond) failures++; }
 // Checks a starved machine could not judge: the test then reports itself skipped (exit 77, with
@@ -41,6 +43,7 @@ function writeConfig(name, port) {
     "    mode: wrench",
     "    flight_mode: stabilize",
     `    link_timeout_ms: ${LINK_TIMEOUT_MS}`,
+    `    stream_timeout_ms: ${STREAM_TIMEOUT_MS}`,
     "    ack_timeout_ms: 300",
     "  timing:",
     "    degraded_ms: 1000",
@@ -70,8 +73,9 @@ function writeConfig(name, port) {
 }
 
 // Starts rovctl run against a fresh peer; resolves once the peer acknowledged the arm.
-async function startRun(name) {
-  const peer = new FakeArduSub(mavlink, { customMode: 0 });  // STABILIZE
+async function startRun(name, peerOptions = {}) {
+  // Booted as ArduSub boots, in MANUAL (19): rovctl must ask for its flight_mode before it arms.
+  const peer = new FakeArduSub(mavlink, { customMode: 19, ...peerOptions });
   const port = await peer.start();
   const config = writeConfig(name, port);
   const child = spawn(rovctl, ["run", "--config", config, "--telemetry", path.join(workDir, name + ".csv")],
@@ -84,6 +88,9 @@ async function startRun(name) {
   const exited = new Promise((resolve) => child.on("exit", (code, signal) => resolve({ code, signal })));
   const armedAt = await peer.waitFor((e) => e.name === "COMMAND_LONG" && e.msg.command === 400 && e.msg._param1 === 1,
                                      20000, "the arm command");
+  const setMode = peer.log.find((e) => e.name === "COMMAND_LONG" && e.msg.command === 176);
+  expect(setMode && setMode.t_ms <= armedAt.t_ms && setMode.msg._param2 === 0 && peer.customMode === 0,
+         `${name}: booted in MANUAL, rovctl set STABILIZE (DO_SET_MODE custom mode 0) before it armed`);
   return { name, peer, child, exited, armedAt, stderr: () => stderr };
 }
 
@@ -213,11 +220,29 @@ await safeWithin2Ticks("heartbeat", "HEARTBEAT stops",
                        (peer) => { peer.beating = false; return peer.lastHeartbeatMs; },
                        async (peer, last) => (await peer.waitFor((e) => e.name === "MANUAL_CONTROL" && e.t_ms > last,
                                                                  5000, "the MANUAL_CONTROL after the last HEARTBEAT")).t_ms + LINK_TIMEOUT_MS,
-                       LINK_TIMEOUT_MS, /FAILSAFE thruster bus fault \(ArduSub link lost\)/);
+                       LINK_TIMEOUT_MS, /FAILSAFE thruster bus fault \(ArduSub link lost: no HEARTBEAT for \d+ ms/);
 // 3. The peer reports disarmed (base_mode without SAFETY_ARMED): the 2 ticks count from that beat.
 await safeWithin2Ticks("disarmed", "ArduSub reports disarmed",
                        (peer) => { peer.armed = false; peer.sendHeartbeat(); return peer.lastHeartbeatMs; },
                        async (peer, sent) => sent, 0, /FAILSAFE thruster bus fault \(ArduSub disarmed\)/);
+
+// 4. ArduSub goes silent (HEARTBEAT and every stream stop): the attitude stream, asked at 20 Hz,
+// tells it STREAM_TIMEOUT_MS after its last message, long before the 1 Hz HEARTBEAT can.
+await safeWithin2Ticks("silent", "ArduSub silent",
+                       (peer) => peer.silence(),
+                       async (peer, last) => last + STREAM_TIMEOUT_MS, STREAM_TIMEOUT_MS,
+                       /FAILSAFE thruster bus fault \(ArduSub silent: no ATTITUDE_QUATERNION for \d+ ms/);
+// 5. ArduSub refuses to arm with a pre-arm reason: rovctl exits saying ArduSub's words.
+{
+  const run = await startRun("prearm", { preArm: "Safety switch" });
+  const result = await Promise.race([run.exited, new Promise((r) => setTimeout(() => r({ code: "timeout" }), 10000))]);
+  if (result.code === "timeout") run.child.kill("SIGKILL");
+  run.peer.stop();
+  expect(result.code !== 0 && result.code !== "timeout", `PreArm refusal: rovctl run exits non-zero (got ${result.code})`);
+  expect(/could not arm the thrusters \(ArduSub refused arm \(MAV_RESULT 4\): PreArm: Safety switch\)/.test(run.stderr()),
+         `PreArm refusal: the reason in rovctl's error (${run.stderr().split("\n").filter((l) => /arm/.test(l)).join(" | ")})`);
+  expect(!run.peer.armed, "PreArm refusal: never armed");
+}
 
 if (failures > 0) {
   console.log(`FAIL: ${failures} check(s)`);

@@ -135,18 +135,89 @@ TEST(ArdusubThrusterBus, RefusedArmingIsAFault) {
   EXPECT_EQ(bus.arm(true), hal::BusStatus::fault);
   EXPECT_EQ(bus.fault(), ArdusubFault::arm_refused);
   EXPECT_FALSE(bus.armed());
+  // ArduSub's own words reach rovctl's error: its result and its PreArm STATUSTEXT.
+  ASSERT_NE(bus.fault_reason(), nullptr);
+  EXPECT_STREQ(bus.fault_reason(), "ArduSub refused arm (MAV_RESULT 4): PreArm: Check mag field");
   EXPECT_EQ(bus.write(all_forward(0.5)), hal::BusStatus::fault);
   EXPECT_EQ(bus.last_axes(), (ArdusubAxes{0, 0, 500, 0}));
 }
 
-TEST(ArdusubThrusterBus, ArmingNeedsTheConfiguredFlightMode) {
+class SteadyClock final : public hal::Clock {
+ public:
+  std::chrono::nanoseconds now() const override {
+    return std::chrono::steady_clock::now().time_since_epoch();
+  }
+  void sleep_until(std::chrono::nanoseconds) override {}
+};
+
+// ArduSub boots in MANUAL: rovctl asks for its flight mode (DO_SET_MODE, custom mode) before
+// it arms, and arms only once ArduSub took it.
+TEST(ArdusubThrusterBus, BootedInManualItSetsTheFlightModeThenArms) {
   FakeArduSub peer;
   peer.mode = 19;  // MANUAL, ArduSub's mode at boot
   ArdusubThrusterBus bus(params_for(peer), hal::ThrusterLayout::bluerov2_heavy());
   std::string error;
   ASSERT_TRUE(bus.open(error)) << error;
+  EXPECT_EQ(bus.arm(true), hal::BusStatus::ok);
+  EXPECT_EQ(peer.mode, 0u);  // STABILIZE, the configured flight_mode
+  EXPECT_TRUE(peer.armed);
+  int set_mode_at = -1, arm_at = -1, i = 0;
+  for (const Received& m : peer.received()) {
+    if (m.is_command && m.command.command == mav::kCmdDoSetMode && set_mode_at < 0) {
+      set_mode_at = i;
+      EXPECT_EQ(m.command.params[0], 1.0F);  // MAV_MODE_FLAG_CUSTOM_MODE_ENABLED
+      EXPECT_EQ(m.command.params[1], 0.0F);
+    }
+    if (m.is_command && m.command.command == mav::kCmdComponentArmDisarm && arm_at < 0) arm_at = i;
+    ++i;
+  }
+  ASSERT_GE(set_mode_at, 0) << "no DO_SET_MODE";
+  EXPECT_LT(set_mode_at, arm_at) << "the mode first, then the arm";
+  EXPECT_EQ(write_until(bus, hal::BusStatus::ok, 200ms), hal::BusStatus::ok);
+}
+
+TEST(ArdusubThrusterBus, AModeArduSubRefusesIsARefusalThatSaysSo) {
+  FakeArduSub peer;
+  peer.mode = 19;
+  peer.refuse_mode = true;
+  ArdusubThrusterBus bus(params_for(peer), hal::ThrusterLayout::bluerov2_heavy());
+  std::string error;
+  ASSERT_TRUE(bus.open(error)) << error;
   EXPECT_EQ(bus.arm(true), hal::BusStatus::fault);
   EXPECT_FALSE(peer.armed);  // never asked
+  EXPECT_EQ(bus.fault(), ArdusubFault::arm_refused);
+  ASSERT_NE(bus.fault_reason(), nullptr);
+  EXPECT_STREQ(bus.fault_reason(),
+               "ArduSub stayed in mode 19 after DO_SET_MODE stabilize (0), refused");
+}
+
+// ArduSub gone silent: its attitude stream (asked at the tick's pace) stops long before the 1 Hz
+// HEARTBEAT can tell, and the bus says so with the figure.
+TEST(ArdusubThrusterBus, AnAttitudeStreamThatStopsIsSilentWithinItsTimeout) {
+  FakeArduSub peer;
+  peer.streaming = true;
+  SteadyClock clock;
+  ArdusubSensors sensors(ArdusubSensorParams{}, clock);
+  ArdusubParams params = params_for(peer);
+  params.link_timeout_ms = 1500;
+  params.stream_timeout_ms = 200;
+  ArdusubThrusterBus bus(params, hal::ThrusterLayout::bluerov2_heavy());
+  bus.attach(sensors);
+  std::string error;
+  ASSERT_TRUE(bus.open(error)) << error;
+  ASSERT_EQ(bus.arm(true), hal::BusStatus::ok);
+  EXPECT_EQ(write_until(bus, hal::BusStatus::ok, 200ms), hal::BusStatus::ok);
+  peer.attitude = false;  // HEARTBEAT and pressure go on
+  const auto stopped = std::chrono::steady_clock::now();
+  EXPECT_EQ(write_until(bus, hal::BusStatus::fault, 2000ms), hal::BusStatus::fault);
+  const auto after = std::chrono::steady_clock::now() - stopped;
+  EXPECT_EQ(bus.fault(), ArdusubFault::stream_silent);
+  EXPECT_GE(after, 150ms);
+  EXPECT_LT(after, 500ms) << "silence is told by the stream, not the heartbeat";
+  ASSERT_NE(bus.fault_reason(), nullptr);
+  const std::string why = bus.fault_reason();
+  EXPECT_EQ(why.rfind("ArduSub silent: no ATTITUDE_QUATERNION for ", 0), 0u) << why;
+  EXPECT_NE(why.find("(limit 200 ms; HEARTBEAT"), std::string::npos) << why;
 }
 
 TEST(ArdusubThrusterBus, LostHeartbeatIsAFault) {
@@ -158,6 +229,10 @@ TEST(ArdusubThrusterBus, LostHeartbeatIsAFault) {
   peer.beating = false;
   EXPECT_EQ(write_until(bus, hal::BusStatus::fault), hal::BusStatus::fault);
   EXPECT_EQ(bus.fault(), ArdusubFault::link_lost);
+  ASSERT_NE(bus.fault_reason(), nullptr);
+  EXPECT_NE(std::string(bus.fault_reason()).find("ArduSub link lost: no HEARTBEAT for "),
+            std::string::npos)
+      << bus.fault_reason();
 }
 
 TEST(ArdusubThrusterBus, ArduSubDisarmingUnderUsIsAFaultUntilRearmed) {
@@ -211,14 +286,6 @@ TEST(ArdusubThrusterBus, CloseSendsNeutralThenDisarm) {
   EXPECT_EQ(r[last_manual].manual.x, 0);
   EXPECT_EQ(r[last_manual].manual.z, 500);
 }
-
-class SteadyClock final : public hal::Clock {
- public:
-  std::chrono::nanoseconds now() const override {
-    return std::chrono::steady_clock::now().time_since_epoch();
-  }
-  void sleep_until(std::chrono::nanoseconds) override {}
-};
 
 TEST(ArdusubThrusterBus, FeedsAttachedSensorsAndRequestsTheirStreams) {
   FakeArduSub peer;

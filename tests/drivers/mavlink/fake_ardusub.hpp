@@ -60,8 +60,10 @@ class FakeArduSub {
   std::atomic<bool> beating{true};
   std::atomic<bool> armed{false};
   std::atomic<std::uint32_t> mode{0};
-  std::atomic<bool> refuse_arm{false};
-  std::atomic<bool> streaming{false};  // ATTITUDE_QUATERNION and SCALED_PRESSURE2 with each beat
+  std::atomic<bool> refuse_arm{false};   // with a "PreArm: Check mag field" STATUSTEXT first
+  std::atomic<bool> refuse_mode{false};  // DO_SET_MODE answered FAILED, the mode unchanged
+  std::atomic<bool> streaming{false};    // ATTITUDE_QUATERNION and SCALED_PRESSURE2 with each beat
+  std::atomic<bool> attitude{true};      // while streaming: ATTITUDE_QUATERNION among them
 
   std::vector<Received> received() {
     std::lock_guard<std::mutex> lock(mutex_);
@@ -113,9 +115,22 @@ class FakeArduSub {
         r.is_command = mav::unpack(f, r.command);
         r.is_rc_override = mav::unpack(f, r.rc_override);
         r.is_heartbeat = mav::unpack(f, hb);
+        if (r.is_command && r.command.command == mav::kCmdDoSetMode) {
+          if (!refuse_mode) mode = static_cast<std::uint32_t>(r.command.params[1]);
+          mav::CommandAck ack;
+          ack.command = r.command.command;
+          ack.result = refuse_mode ? 4 : 0;
+          send(ack);
+        }
         if (r.is_command && r.command.command == mav::kCmdComponentArmDisarm) {
           const bool accept = !refuse_arm || r.command.params[0] == 0.0F;
           if (accept) armed = r.command.params[0] == 1.0F;
+          if (!accept) {
+            mav::StatusText t;
+            t.severity = 2;  // MAV_SEVERITY_CRITICAL, as ArduSub's pre-arm messages
+            mav::set_text(t.text, "PreArm: Check mag field");
+            send(t);
+          }
           mav::CommandAck ack;
           ack.command = r.command.command;
           ack.result = accept ? 0 : 4;  // MAV_RESULT_ACCEPTED / FAILED
@@ -134,10 +149,12 @@ class FakeArduSub {
         hb.base_mode = armed ? mav::kModeFlagSafetyArmed : 0;
         hb.custom_mode = mode;
         send(hb);
-        if (streaming) {
+        if (streaming && attitude) {
           mav::AttitudeQuaternion a;
           a.q_ned_body = {0.0F, 1.0F, 0.0F, 0.0F};  // upside down about x
           send(a);
+        }
+        if (streaming) {
           mav::ScaledPressure2 p;
           p.press_abs_hpa = 1113.25F;
           send(p);
