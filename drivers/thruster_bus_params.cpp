@@ -7,11 +7,13 @@ void describe(hal::ParamVisitor& v, BusTimingParams& p) {
   v.param("watchdog_ms", p.watchdog_ms,
           {"ms", 20, 5000,
            "heartbeat gap after which the thruster controller stops (deploy/modbus-register-map.md"
-           " register 16); a longer gap reports the bus fault, which trips the failsafe"});
+           " register 16; on ArduSub its FS_PILOT_TIMEOUT); a longer gap reports the bus fault, "
+           "which trips the failsafe"});
   v.param("degraded_ms", p.degraded_ms,
           {"ms", 1, 5000,
            "heartbeat gap (time since the last acknowledged write) beyond which the bus reports "
-           "degraded; below watchdog_ms"});
+           "degraded; below watchdog_ms. A gap this machine made itself (the tick or the bus's I/O "
+           "thread held off the CPU) is not held against the bus until watchdog_ms"});
   v.param("command_deadline_ms", p.command_deadline_ms,
           {"ms", 1, 1000,
            "age beyond which a command still waiting for the bus is dropped instead of sent"});

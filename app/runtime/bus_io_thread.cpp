@@ -6,6 +6,7 @@
 #include <sched.h>
 
 #include <cerrno>
+#include <cstdio>
 #include <ctime>
 
 #include "app/runtime/realtime_setup.hpp"
@@ -58,6 +59,7 @@ bool BusIoThread::open(std::string& error) {
   closed_ = false;
   // Opening commanded neutral and was answered: the heartbeat's first beat.
   last_ack_ns_.store(clock_.now().count(), std::memory_order_release);
+  last_wake_ns_.store(clock_.now().count(), std::memory_order_release);
   running_.store(true);
   thread_ = std::thread([this]() { run(); });
   return true;
@@ -99,6 +101,12 @@ void BusIoThread::run() {
   int reads_skipped = 0;
   while (true) {
     wait_for_work();
+    // What the tick needs to tell a stall of this thread from a bus that does not answer: when
+    // it last ran, and since when it is inside a bus call (the whole pass: the rest is
+    // microseconds).
+    const std::int64_t woke = clock_.now().count();
+    last_wake_ns_.store(woke, std::memory_order_release);
+    busy_since_ns_.store(woke, std::memory_order_release);
     // Arm requests first: a disarm must not wait behind a command, and arming always writes
     // neutral before it arms (the bus's contract), so no queued command jumps ahead of it.
     const std::uint32_t requested = arm_requested_.load(std::memory_order_acquire);
@@ -158,6 +166,7 @@ void BusIoThread::run() {
         }
       }
     }
+    busy_since_ns_.store(0, std::memory_order_release);
     // Stop only once nothing is left to answer, so close()'s final disarm is always attempted.
     if (!running_.load(std::memory_order_acquire) &&
         arm_requested_.load(std::memory_order_acquire) == answered) {
@@ -170,30 +179,76 @@ std::chrono::nanoseconds BusIoThread::heartbeat_age() const {
   return clock_.now() - std::chrono::nanoseconds(last_ack_ns_.load(std::memory_order_acquire));
 }
 
-hal::BusStatus BusIoThread::status_now() const {
+hal::BusStatus BusIoThread::status_for_tick(std::chrono::nanoseconds now) {
+  reason_is_gap_ = false;
   if (!opened_ || closed_) return hal::BusStatus::fault;
-  const std::chrono::nanoseconds age = heartbeat_age();
-  const hal::BusStatus gap =
-      age > std::chrono::milliseconds(timing_.watchdog_ms)   ? hal::BusStatus::fault
-      : age > std::chrono::milliseconds(timing_.degraded_ms) ? hal::BusStatus::degraded
-                                                             : hal::BusStatus::ok;
-  return worst(gap, static_cast<hal::BusStatus>(bus_status_.load(std::memory_order_acquire)));
+  const auto own = static_cast<hal::BusStatus>(bus_status_.load(std::memory_order_acquire));
+  const std::chrono::nanoseconds age =
+      now - std::chrono::nanoseconds(last_ack_ns_.load(std::memory_order_acquire));
+  const std::chrono::milliseconds degraded_ms(timing_.degraded_ms);
+  const std::chrono::milliseconds watchdog_ms(timing_.watchdog_ms);
+  hal::BusStatus gap = age > watchdog_ms   ? hal::BusStatus::fault
+                       : age > degraded_ms ? hal::BusStatus::degraded
+                                           : hal::BusStatus::ok;
+  if (gap == hal::BusStatus::ok) return own;
+  const auto ms = [](std::chrono::nanoseconds d) {
+    return static_cast<long long>(std::chrono::duration_cast<std::chrono::milliseconds>(d).count());
+  };
+  const std::int64_t busy_since = busy_since_ns_.load(std::memory_order_acquire);
+  const std::chrono::nanoseconds io_idle =
+      now - std::chrono::nanoseconds(last_wake_ns_.load(std::memory_order_acquire));
+  const char* local = nullptr;
+  std::chrono::nanoseconds local_gap{0};
+  if (tick_gap_ > degraded_ms) {
+    local = "tick late";
+    local_gap = tick_gap_;
+  } else if (busy_since == 0 && io_idle > degraded_ms) {
+    local = "I/O thread late";
+    local_gap = io_idle;
+  }
+  // A stall of this machine's own that stayed under the controller's watchdog: the vehicle kept
+  // its last command throughout and the next cycle catches up; holding it against the bus would
+  // end a mission the vehicle never saw interrupted.
+  if (local != nullptr && gap == hal::BusStatus::degraded) return own;
+  if (own != hal::BusStatus::fault) {
+    reason_is_gap_ = true;
+    if (local != nullptr) {
+      std::snprintf(gap_reason_.data(), gap_reason_.size(),
+                    "%s %lld ms (a stall of this machine): no command acknowledged for %lld ms, "
+                    "past watchdog_ms %d",
+                    local, ms(local_gap), ms(age), timing_.watchdog_ms);
+    } else if (busy_since != 0) {
+      std::snprintf(gap_reason_.data(), gap_reason_.size(),
+                    "bus not answering: a request waiting %lld ms, no acknowledgement for %lld ms "
+                    "(limits %d / %d ms)",
+                    ms(now - std::chrono::nanoseconds(busy_since)), ms(age), timing_.degraded_ms,
+                    timing_.watchdog_ms);
+    } else {
+      std::snprintf(gap_reason_.data(), gap_reason_.size(),
+                    "no acknowledgement for %lld ms (limits %d / %d ms)", ms(age),
+                    timing_.degraded_ms, timing_.watchdog_ms);
+    }
+  }
+  return worst(gap, own);
 }
 
 hal::BusStatus BusIoThread::write(const hal::ThrusterCommand& command) {
   if (!opened_ || closed_) return hal::BusStatus::fault;
   StampedCommand& slot = commands_.back();
   slot.command = command;
-  slot.stamp = clock_.now();
+  const std::chrono::nanoseconds now = clock_.now();
+  slot.stamp = now;
   commands_.publish();
   wake();
-  return status_now();
+  tick_gap_ = prev_write_.count() == 0 ? std::chrono::nanoseconds{0} : now - prev_write_;
+  prev_write_ = now;
+  return status_for_tick(now);
 }
 
 hal::BusStatus BusIoThread::read(hal::ThrusterTelemetry& telemetry) {
   if (const hal::ThrusterTelemetry* t = telemetry_.take()) last_telemetry_ = *t;
   telemetry = last_telemetry_;
-  return status_now();
+  return status_for_tick(clock_.now());
 }
 
 bool BusIoThread::request_arm(bool armed, hal::BusStatus& answer) {
@@ -216,7 +271,7 @@ hal::BusStatus BusIoThread::arm(bool armed) {
     arm_value_.store(false, std::memory_order_release);
     arm_requested_.fetch_add(1, std::memory_order_acq_rel);
     wake();
-    return status_now();
+    return status_for_tick(clock_.now());
   }
   hal::BusStatus answer = hal::BusStatus::fault;
   if (!request_arm(true, answer)) return hal::BusStatus::fault;  // no answer in time

@@ -4,6 +4,7 @@
 
 #include <semaphore.h>
 
+#include <array>
 #include <atomic>
 #include <chrono>
 #include <cstdint>
@@ -54,7 +55,11 @@ class BusIoThread final : public hal::ThrusterBus {
   // acknowledgement, then stops the thread and closes the bus. Idempotent.
   void close() override;
   std::string name() const override { return name_; }
-  const char* fault_reason() const override { return bus_.fault_reason(); }
+  // The bus's own reason, or when the heartbeat gap is the cause, the gap's story with figures:
+  // a local stall ("tick late 240 ms", "I/O thread late 240 ms") or the bus not answering.
+  const char* fault_reason() const override {
+    return reason_is_gap_ ? gap_reason_.data() : bus_.fault_reason();
+  }
 
   // After close(): whether the final neutral and disarm were acknowledged in time.
   bool safe_acknowledged() const { return safe_acknowledged_; }
@@ -72,7 +77,10 @@ class BusIoThread final : public hal::ThrusterBus {
   void run();
   void wake() noexcept;
   void wait_for_work() noexcept;
-  hal::BusStatus status_now() const;
+  // The tick's status (write and read): the gap's, where a gap this machine caused itself (the
+  // tick or the I/O thread held off the CPU) that stayed within watchdog_ms, so the controller's
+  // own watchdog never saw it, is not held against the bus; and the worse of it and the bus's.
+  hal::BusStatus status_for_tick(std::chrono::nanoseconds now);
   // Sends one arm/disarm request and waits at most close_timeout_ms; false on timeout.
   bool request_arm(bool armed, hal::BusStatus& answer);
   void record_ack(std::chrono::nanoseconds now);
@@ -87,6 +95,13 @@ class BusIoThread final : public hal::ThrusterBus {
   sem_t wake_{};
   std::atomic<bool> running_{false};
   std::atomic<std::int64_t> last_ack_ns_{0};
+  std::atomic<std::int64_t> last_wake_ns_{0};   // the I/O thread's last pass (every <= 20 ms)
+  std::atomic<std::int64_t> busy_since_ns_{0};  // a bus call under way since; 0: none
+  // The tick's own (write and read): the gap between its last two writes, and the gap's story.
+  std::chrono::nanoseconds prev_write_{0};
+  std::chrono::nanoseconds tick_gap_{0};
+  bool reason_is_gap_ = false;
+  std::array<char, 192> gap_reason_{};
   std::atomic<int> bus_status_{static_cast<int>(hal::BusStatus::ok)};
   // Arm requests: the caller sets the value, then bumps the sequence; the thread answers it.
   std::atomic<bool> arm_value_{false};

@@ -200,12 +200,46 @@ TEST(BusIoThread, HeartbeatGapTurnsStatusDegradedThenFault) {
   bus.hold();
   clock.advance(10ms);
   EXPECT_EQ(io.write(thrust(0.1)), hal::BusStatus::ok);  // the peer hangs on this one
+  ASSERT_TRUE(eventually([&] { return bus.written().size() == 2; }));  // inside the bus call
   clock.advance(95ms);                                   // 105 ms since the last answer
   EXPECT_EQ(io.write(thrust(0.1)), hal::BusStatus::degraded);
   clock.advance(100ms);  // 205 ms: the controller's watchdog has stopped the thrusters
   EXPECT_EQ(io.write(thrust(0.1)), hal::BusStatus::fault);
   EXPECT_EQ(io.read(t), hal::BusStatus::fault);
+  ASSERT_NE(io.fault_reason(), nullptr);
+  EXPECT_EQ(std::string(io.fault_reason()).rfind("bus not answering: a request waiting ", 0), 0u)
+      << io.fault_reason();
+  EXPECT_NE(
+      std::string(io.fault_reason()).find("no acknowledgement for 205 ms (limits 100 / 200 ms)"),
+      std::string::npos)
+      << io.fault_reason();
   bus.release();
+  io.close();
+}
+
+// The tick held off the CPU (this machine's stall, not the bus's): within the watchdog the
+// controller never saw a gap, so the status stays ok; past it the reason says whose stall it was.
+TEST(BusIoThread, AStallOfTheTickIsToldApartFromTheBus) {
+  FakeBus bus;
+  ManualClock clock;
+  BusIoThread io(bus, clock, timing());
+  std::string error;
+  ASSERT_TRUE(io.open(error));
+  io.write(thrust(0.1));
+  ASSERT_TRUE(eventually([&] { return io.heartbeat_age() == 0ns && bus.written().size() == 1; }));
+  clock.advance(150ms);  // no tick for 150 ms: over degraded_ms, under watchdog_ms
+  EXPECT_EQ(io.write(thrust(0.1)), hal::BusStatus::ok);
+  ASSERT_TRUE(eventually([&] { return io.heartbeat_age() == 0ns && bus.written().size() == 2; }));
+  clock.advance(250ms);  // past watchdog_ms: the controller's watchdog has stopped the thrusters
+  bus.hold();            // (so that this write's own answer cannot race the status)
+  EXPECT_EQ(io.write(thrust(0.1)), hal::BusStatus::fault);
+  ASSERT_NE(io.fault_reason(), nullptr);
+  EXPECT_STREQ(io.fault_reason(),
+               "tick late 250 ms (a stall of this machine): no command acknowledged for 250 ms, "
+               "past watchdog_ms 200");
+  bus.release();
+  ASSERT_TRUE(eventually([&] { return io.heartbeat_age() == 0ns && bus.written().size() == 3; }));
+  EXPECT_EQ(io.write(thrust(0.1)), hal::BusStatus::ok);  // caught up at the next tick
   io.close();
 }
 
