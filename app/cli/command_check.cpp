@@ -2,6 +2,7 @@
 // on ArduSub, its failsafe parameters); exit 0 when all pass, 2 when any fails. Nothing is armed.
 #include <array>
 #include <chrono>
+#include <cstdio>
 #include <iostream>
 #include <optional>
 #include <thread>
@@ -48,6 +49,45 @@ void check_ardusub_failsafes(Checker& check, drivers::ArdusubThrusterBus& bus,
   const drivers::ArdusubFailsafeVerdict v =
       drivers::judge_ardusub_gcs_id(params.gcs_system_id, gcs_id);
   check.line(v.safe, "ArduSub " + v.name, v.reason);
+}
+
+std::string one_decimal(double v) {
+  char text[32];
+  std::snprintf(text, sizeof(text), "%.1f", v);
+  return text;
+}
+
+// The link as the tick will use it: the round trip of a parameter read, what arrives over 1.2 s
+// (a 1 Hz HEARTBEAT always falls in it) against what open() asked for, and the mode ArduSub is
+// in now (rovctl sets its flight_mode before it arms).
+void check_ardusub_link(Checker& check, drivers::ArdusubThrusterBus& bus, const AppConfig& config) {
+  if (const auto rtt = bus.last_round_trip()) {
+    check.line(true, "ArduSub round trip",
+               std::to_string(rtt->count()) + " ms (PARAM_REQUEST_READ to PARAM_VALUE)");
+  }
+  const drivers::ArdusubThrusterBus::ArrivalRates r =
+      bus.measure_arrivals(std::chrono::milliseconds(1200));
+  check.line(r.heartbeat_hz > 0.0, "ArduSub HEARTBEAT",
+             one_decimal(r.heartbeat_hz) + " Hz over 1.2 s");
+  if (config.sensors.backend == "ardusub") {
+    const double asked = 1000.0 / config.sensors.ardusub.stream_interval_ms;
+    const auto stream = [&](const char* name, double hz) {
+      // A fifth below the asked rate leaves the stream's staleness limits no slack.
+      check.line(hz >= 0.8 * asked, std::string("ArduSub ") + name,
+                 one_decimal(hz) + " Hz over 1.2 s, asked " + one_decimal(asked) +
+                     " Hz (sensors.ardusub.stream_interval_ms)");
+    };
+    stream("ATTITUDE_QUATERNION", r.attitude_hz);
+    stream("SCALED_PRESSURE2", r.pressure_hz);
+    stream("SYS_STATUS", r.sys_status_hz);
+  }
+  const drivers::ArdusubParams& p = config.thruster_bus.ardusub;
+  const auto mode = static_cast<std::uint32_t>(drivers::ardusub_custom_mode(p.flight_mode));
+  check.line(true, "ArduSub mode",
+             "custom mode " + std::to_string(bus.vehicle_mode()) +
+                 (bus.vehicle_mode() == mode ? " (" + p.flight_mode + ")"
+                                             : "; rovctl sets " + p.flight_mode + " (" +
+                                                   std::to_string(mode) + ") before it arms"));
 }
 
 }  // namespace
@@ -125,6 +165,7 @@ int command_check(const Words& words) {
                    std::to_string(config.vehicle.thrusters.thrusters.size()) + " thrusters");
     if (auto* ardusub = dynamic_cast<drivers::ArdusubThrusterBus*>(hw.bus)) {
       check_ardusub_failsafes(check, *ardusub, config.thruster_bus.ardusub);
+      check_ardusub_link(check, *ardusub, config);
     }
     hw.bus->close();
   } else {

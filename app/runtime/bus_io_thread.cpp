@@ -87,6 +87,69 @@ void BusIoThread::record_ack(std::chrono::nanoseconds now) {
   }
 }
 
+void BusIoThread::answer_arm_request(std::uint32_t& answered) {
+  const std::uint32_t requested = arm_requested_.load(std::memory_order_acquire);
+  if (requested != answered) {
+    const hal::BusStatus s = bus_.arm(arm_value_.load(std::memory_order_acquire));
+    bus_status_.store(static_cast<int>(as_published(s)), std::memory_order_release);
+    // Answered, but not a heartbeat (the controller's watchdog looks at the beat register): it
+    // restarts the gap without counting as a period.
+    if (s == hal::BusStatus::ok)
+      last_ack_ns_.store(clock_.now().count(), std::memory_order_release);
+    arm_status_.store(static_cast<int>(s), std::memory_order_release);
+    answered = requested;
+    arm_answered_.store(answered, std::memory_order_release);
+  }
+}
+
+void BusIoThread::serve_command() {
+  const std::uint64_t published = commands_.published();
+  if (const StampedCommand* c = commands_.take()) {
+    if (clock_.now() - c->stamp > std::chrono::milliseconds(timing_.command_deadline_ms)) {
+      // The tick has moved on (or stopped): late thrust is worse than none, and the
+      // controller's watchdog stops the thrusters if nothing fresher comes.
+      ++stats_.dropped_stale;
+      if (reads_skipped_ > 0) {  // the read deferred for it: the bus is free now
+        reads_skipped_ = 0;
+        hal::ThrusterTelemetry& t = telemetry_.back();
+        if (bus_.read(t) != hal::BusStatus::fault) telemetry_.publish();
+      }
+    } else if (probing_) {
+      // A request that went unanswered may still sit in a stalled peer's input (a stream
+      // cannot take it back), to be executed when it resumes: send no more commands into that
+      // queue, only telemetry reads, harmless when replayed, until one is answered.
+      ++stats_.withheld;
+      hal::ThrusterTelemetry& t = telemetry_.back();
+      if (bus_.read(t) != hal::BusStatus::fault && t.valid) {
+        telemetry_.publish();
+        probing_ = false;
+        // A command published while the peer was silent is a tick or more old by now: the
+        // peer that is back gets only commands made after it answered.
+        if (commands_.take() != nullptr) ++stats_.dropped_stale;
+      }
+    } else {
+      ++stats_.written;
+      const hal::BusStatus s = bus_.write(c->command);
+      bus_status_.store(static_cast<int>(as_published(s)), std::memory_order_release);
+      if (s == hal::BusStatus::ok) {
+        record_ack(clock_.now());
+        // A newer command already waiting goes first: on a slow controller the read would
+        // push every heartbeat past the tick. Telemetry is still read every kReadEvery cycles.
+        const bool newer_waiting = commands_.published() != published;
+        if (!newer_waiting || ++reads_skipped_ >= kReadEvery) {
+          reads_skipped_ = 0;
+          hal::ThrusterTelemetry& t = telemetry_.back();
+          if (bus_.read(t) != hal::BusStatus::fault) telemetry_.publish();
+        } else {
+          ++stats_.reads_deferred;
+        }
+      } else {
+        probing_ = true;
+      }
+    }
+  }
+}
+
 void BusIoThread::run() {
   // Above every ordinary process, below the tick (SCHED_FIFO 80 on the vehicle): the heartbeat
   // is what keeps the controller's watchdog quiet, and with this thread a normal one a busy
@@ -97,8 +160,8 @@ void BusIoThread::run() {
   fifo.sched_priority = kIoThreadPriority;
   if (pthread_setschedparam(pthread_self(), SCHED_FIFO, &fifo) != 0) make_thread_non_realtime();
   std::uint32_t answered = 0;
-  bool probing = false;  // a command went unanswered: reads only until the peer answers
-  int reads_skipped = 0;
+  probing_ = false;
+  reads_skipped_ = 0;
   while (true) {
     wait_for_work();
     // What the tick needs to tell a stall of this thread from a bus that does not answer: when
@@ -109,63 +172,8 @@ void BusIoThread::run() {
     busy_since_ns_.store(woke, std::memory_order_release);
     // Arm requests first: a disarm must not wait behind a command, and arming always writes
     // neutral before it arms (the bus's contract), so no queued command jumps ahead of it.
-    const std::uint32_t requested = arm_requested_.load(std::memory_order_acquire);
-    if (requested != answered) {
-      const hal::BusStatus s = bus_.arm(arm_value_.load(std::memory_order_acquire));
-      bus_status_.store(static_cast<int>(as_published(s)), std::memory_order_release);
-      // Answered, but not a heartbeat (the controller's watchdog looks at the beat register): it
-      // restarts the gap without counting as a period.
-      if (s == hal::BusStatus::ok)
-        last_ack_ns_.store(clock_.now().count(), std::memory_order_release);
-      arm_status_.store(static_cast<int>(s), std::memory_order_release);
-      answered = requested;
-      arm_answered_.store(answered, std::memory_order_release);
-    }
-    const std::uint64_t published = commands_.published();
-    if (const StampedCommand* c = commands_.take()) {
-      if (clock_.now() - c->stamp > std::chrono::milliseconds(timing_.command_deadline_ms)) {
-        // The tick has moved on (or stopped): late thrust is worse than none, and the
-        // controller's watchdog stops the thrusters if nothing fresher comes.
-        ++stats_.dropped_stale;
-        if (reads_skipped > 0) {  // the read deferred for it: the bus is free now
-          reads_skipped = 0;
-          hal::ThrusterTelemetry& t = telemetry_.back();
-          if (bus_.read(t) != hal::BusStatus::fault) telemetry_.publish();
-        }
-      } else if (probing) {
-        // A request that went unanswered may still sit in a stalled peer's input (a stream
-        // cannot take it back), to be executed when it resumes: send no more commands into that
-        // queue, only telemetry reads, harmless when replayed, until one is answered.
-        ++stats_.withheld;
-        hal::ThrusterTelemetry& t = telemetry_.back();
-        if (bus_.read(t) != hal::BusStatus::fault && t.valid) {
-          telemetry_.publish();
-          probing = false;
-          // A command published while the peer was silent is a tick or more old by now: the
-          // peer that is back gets only commands made after it answered.
-          if (commands_.take() != nullptr) ++stats_.dropped_stale;
-        }
-      } else {
-        ++stats_.written;
-        const hal::BusStatus s = bus_.write(c->command);
-        bus_status_.store(static_cast<int>(as_published(s)), std::memory_order_release);
-        if (s == hal::BusStatus::ok) {
-          record_ack(clock_.now());
-          // A newer command already waiting goes first: on a slow controller the read would
-          // push every heartbeat past the tick. Telemetry is still read every kReadEvery cycles.
-          const bool newer_waiting = commands_.published() != published;
-          if (!newer_waiting || ++reads_skipped >= kReadEvery) {
-            reads_skipped = 0;
-            hal::ThrusterTelemetry& t = telemetry_.back();
-            if (bus_.read(t) != hal::BusStatus::fault) telemetry_.publish();
-          } else {
-            ++stats_.reads_deferred;
-          }
-        } else {
-          probing = true;
-        }
-      }
-    }
+    answer_arm_request(answered);
+    serve_command();
     busy_since_ns_.store(0, std::memory_order_release);
     // Stop only once nothing is left to answer, so close()'s final disarm is always attempted.
     if (!running_.load(std::memory_order_acquire) &&

@@ -75,6 +75,9 @@ class BusIoThread final : public hal::ThrusterBus {
   };
 
   void run();
+  // The I/O thread's pass: a pending arm or disarm request, then the newest command.
+  void answer_arm_request(std::uint32_t& answered);
+  void serve_command();
   void wake() noexcept;
   void wait_for_work() noexcept;
   // The tick's status (write and read): the gap's, where a gap this machine caused itself (the
@@ -110,6 +113,10 @@ class BusIoThread final : public hal::ThrusterBus {
   std::atomic<int> arm_status_{static_cast<int>(hal::BusStatus::ok)};
   hal::ThrusterTelemetry last_telemetry_;  // the tick's copy when nothing new arrived
 
+  // The I/O thread's own: a command went unanswered (reads only until the peer answers), and
+  // telemetry reads deferred behind newer commands.
+  bool probing_ = false;
+  int reads_skipped_ = 0;
   std::thread thread_;
   BusIoStats stats_;  // the I/O thread's own until it is joined
   bool opened_ = false;

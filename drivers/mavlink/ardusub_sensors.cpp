@@ -67,6 +67,9 @@ bool ArdusubSensors::read(hal::SensorReadings& readings) {
   const std::chrono::nanoseconds now = clock_.now();
   const auto stale = std::chrono::milliseconds(params_.stale_ms);
   readings = s->readings;
+  readings.attitude_age = now - s->attitude_stamp;
+  readings.depth_age = now - s->depth_stamp;
+  readings.battery_age = now - s->battery_stamp;
   readings.attitude_valid = readings.attitude_valid && now - s->attitude_stamp <= stale;
   readings.depth_valid = readings.depth_valid && now - s->depth_stamp <= stale;
   readings.battery_valid = readings.battery_valid && now - s->battery_stamp <= stale;

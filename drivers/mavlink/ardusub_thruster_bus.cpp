@@ -141,7 +141,12 @@ void ArdusubThrusterBus::pump() {
     if (io != mavlink::MavlinkLink::Io::ok) break;
     if (f.header.system_id != params_.vehicle_system_id) continue;
     if (sensors_ != nullptr) sensors_->accept(f);
-    if (f.header.message_id == mavlink::AttitudeQuaternion::kId) last_attitude_ = now;
+    if (f.header.message_id == mavlink::AttitudeQuaternion::kId) {
+      last_attitude_ = now;
+      ++counters_.attitude_received;
+    }
+    counters_.pressure_received += f.header.message_id == mavlink::ScaledPressure2::kId;
+    counters_.sys_status_received += f.header.message_id == mavlink::SysStatus::kId;
     mavlink::Heartbeat hb;
     mavlink::CommandAck ack;
     mavlink::ParamValue value;
@@ -407,15 +412,38 @@ std::optional<float> ArdusubThrusterBus::read_parameter(std::string_view id) {
   param_answered_ = false;
   for (int attempt = 0; attempt < 3 && !param_answered_; ++attempt) {
     if (!send(request)) break;
-    const auto deadline = Clock::now() + std::chrono::milliseconds(params_.ack_timeout_ms);
+    const auto sent = Clock::now();
+    const auto deadline = sent + std::chrono::milliseconds(params_.ack_timeout_ms);
     while (!param_answered_ && Clock::now() < deadline) {
       wait_a_little();
       pump();
+    }
+    if (param_answered_) {
+      round_trip_ = std::chrono::duration_cast<std::chrono::milliseconds>(Clock::now() - sent);
     }
   }
   awaited_param_ = {};
   if (!param_answered_) return std::nullopt;
   return param_value_;
+}
+
+ArdusubThrusterBus::ArrivalRates ArdusubThrusterBus::measure_arrivals(
+    std::chrono::milliseconds window) {
+  const ArdusubCounters before = counters_;
+  const auto start = Clock::now();
+  while (Clock::now() - start < window) {
+    wait_a_little();
+    pump();
+  }
+  const double s = std::chrono::duration<double>(Clock::now() - start).count();
+  ArrivalRates r;
+  r.heartbeat_hz =
+      static_cast<double>(counters_.heartbeats_received - before.heartbeats_received) / s;
+  r.attitude_hz = static_cast<double>(counters_.attitude_received - before.attitude_received) / s;
+  r.pressure_hz = static_cast<double>(counters_.pressure_received - before.pressure_received) / s;
+  r.sys_status_hz =
+      static_cast<double>(counters_.sys_status_received - before.sys_status_received) / s;
+  return r;
 }
 
 ArdusubFault ArdusubThrusterBus::fault() const {

@@ -45,6 +45,9 @@ struct ArdusubCounters {
   std::uint64_t rc_override_sent = 0;
   std::uint64_t heartbeats_sent = 0;
   std::uint64_t heartbeats_received = 0;  // from ArduSub (vehicle system and component id)
+  std::uint64_t attitude_received = 0;    // ATTITUDE_QUATERNION
+  std::uint64_t pressure_received = 0;    // SCALED_PRESSURE2
+  std::uint64_t sys_status_received = 0;  // SYS_STATUS
   std::uint64_t acks_received = 0;
   std::uint64_t send_failures = 0;
 };
@@ -86,6 +89,20 @@ class ArdusubThrusterBus final : public hal::ThrusterBus {
   // PARAM_REQUEST_READ, answered by PARAM_VALUE; waits ack_timeout_ms per try, 3 tries (UDP);
   // none when ArduSub does not answer.
   std::optional<float> read_parameter(std::string_view id);
+  // Send to answer of the last read_parameter() ArduSub answered (the link's round trip).
+  std::optional<std::chrono::milliseconds> last_round_trip() const { return round_trip_; }
+
+  // After open(), not from the tick (`rovctl check`): what arrived from ArduSub over `window`,
+  // the link drained meanwhile, per second.
+  struct ArrivalRates {
+    double heartbeat_hz = 0.0;
+    double attitude_hz = 0.0;
+    double pressure_hz = 0.0;
+    double sys_status_hz = 0.0;
+  };
+  ArrivalRates measure_arrivals(std::chrono::milliseconds window);
+  // ArduSub's custom_mode in its last HEARTBEAT.
+  std::uint32_t vehicle_mode() const { return vehicle_mode_; }
 
   // rovctl's status to the ground station (null when gcs_status.enabled is false): fed by the
   // tick and the event logger, framed and sent by whichever thread runs this bus's I/O.
@@ -165,6 +182,7 @@ class ArdusubThrusterBus final : public hal::ThrusterBus {
   std::array<char, 16> awaited_param_{};  // read_parameter()'s id while it waits
   bool param_answered_ = false;
   float param_value_ = 0.0F;
+  std::optional<std::chrono::milliseconds> round_trip_;
   std::uint64_t arm_acks_ = 0;  // COMMAND_ACKs of ARM_DISARM
   std::uint8_t arm_result_ = 0;
   std::uint64_t mode_acks_ = 0;  // COMMAND_ACKs of DO_SET_MODE

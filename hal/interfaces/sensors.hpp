@@ -9,6 +9,11 @@ namespace rovctl::hal {
 
 struct SensorReadings {
   std::chrono::nanoseconds stamp{0};
+  // How old each part was when read (0 for a sensor sampled at the read): a part past its
+  // source's limit is also marked invalid, so stale is never served as fresh.
+  std::chrono::nanoseconds depth_age{0};
+  std::chrono::nanoseconds attitude_age{0};
+  std::chrono::nanoseconds battery_age{0};
   bool depth_valid = false;
   double depth_m = 0.0;
   bool attitude_valid = false;

@@ -58,6 +58,15 @@ async function check(name, params) {
     expect(new RegExp(`^PASS  ArduSub ${n}: `, "m").test(out), `safe values: ${n} named and PASS`);
   }
   expect(/^PASS  ArduSub SYSID_MYGCS: 255: /m.test(out), "SYSID_MYGCS 255: named and PASS");
+  // The link as the tick will use it: round trip, arrivals over 1.2 s against the 20 Hz asked,
+  // and the mode it is in (rovctl sets STABILIZE only when it arms).
+  expect(/^PASS  ArduSub round trip: \d+ ms /m.test(out), "the link's round trip reported");
+  expect(/^PASS  ArduSub HEARTBEAT: [\d.]+ Hz over 1.2 s/m.test(out), "HEARTBEAT arrivals reported");
+  for (const n of ["ATTITUDE_QUATERNION", "SCALED_PRESSURE2", "SYS_STATUS"]) {
+    expect(new RegExp(`^PASS  ArduSub ${n}: [\\d.]+ Hz over 1.2 s, asked 20.0 Hz`, "m").test(out),
+           `${n} arriving at the rate asked`);
+  }
+  expect(/^PASS  ArduSub mode: custom mode 0 \(stabilize\)/m.test(out), "the mode ArduSub is in");
   expect(code === 0, `safe values: rovctl check exits 0 (got ${code})`);
 }
 // The GCS id under both of its names (MAV_GCS_SYSID from ArduSub 4.7): a mismatch means ArduSub

@@ -131,9 +131,12 @@ TEST(ArdusubSensors, EachPartGoesStaleOnItsOwn) {
   ASSERT_TRUE(sensors.read(r));
   EXPECT_FALSE(r.attitude_valid);
   EXPECT_TRUE(r.depth_valid);
+  EXPECT_EQ(r.attitude_age, 400ms);  // each reading says how old it is
+  EXPECT_EQ(r.depth_age, 200ms);
   clock.now_ += 200ms;
   ASSERT_TRUE(sensors.read(r));
   EXPECT_FALSE(r.depth_valid);
+  EXPECT_EQ(r.depth_age, 400ms);
 }
 
 TEST(ArdusubSensors, AcceptAndReadAllocateNothing) {
