@@ -81,6 +81,14 @@ void check_ardusub_link(Checker& check, drivers::ArdusubThrusterBus& bus, const 
     stream("SCALED_PRESSURE2", r.pressure_hz);
     stream("SYS_STATUS", r.sys_status_hz);
   }
+  // What would refuse the arm, asked without arming (MAV_CMD_RUN_PREARM_CHECKS).
+  if (const std::optional<std::string> failure = bus.run_prearm_checks()) {
+    check.line(failure->empty(), "ArduSub pre-arm checks",
+               failure->empty() ? "no failure reported" : *failure);
+  } else {
+    check.line(true, "ArduSub pre-arm checks",
+               "not answered (MAV_CMD_RUN_PREARM_CHECKS): a refusal shows when rovctl arms");
+  }
   const drivers::ArdusubParams& p = config.thruster_bus.ardusub;
   const auto mode = static_cast<std::uint32_t>(drivers::ardusub_custom_mode(p.flight_mode));
   check.line(true, "ArduSub mode",

@@ -427,6 +427,30 @@ std::optional<float> ArdusubThrusterBus::read_parameter(std::string_view id) {
   return param_value_;
 }
 
+std::optional<std::string> ArdusubThrusterBus::run_prearm_checks() {
+  if (!opened_) return std::nullopt;
+  mavlink::CommandLong c;
+  c.command = mavlink::kCmdRunPrearmChecks;
+  c.target_system = static_cast<std::uint8_t>(params_.vehicle_system_id);
+  c.target_component = static_cast<std::uint8_t>(params_.vehicle_component_id);
+  prearm_text_.fill('\0');
+  const std::uint64_t acks_before = counters_.acks_received;
+  if (!send(c)) return std::nullopt;
+  const auto wait = std::chrono::milliseconds(params_.ack_timeout_ms);
+  auto deadline = Clock::now() + wait;
+  bool acknowledged = false;
+  while (Clock::now() < deadline && prearm_text_[0] == '\0') {
+    wait_a_little();
+    pump();
+    if (!acknowledged && counters_.acks_received != acks_before) {
+      acknowledged = true;
+      deadline = Clock::now() + wait;  // the failures follow the ACK
+    }
+  }
+  if (!acknowledged && prearm_text_[0] == '\0') return std::nullopt;
+  return std::string(prearm_text_.data());
+}
+
 ArdusubThrusterBus::ArrivalRates ArdusubThrusterBus::measure_arrivals(
     std::chrono::milliseconds window) {
   const ArdusubCounters before = counters_;

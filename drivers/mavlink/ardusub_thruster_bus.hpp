@@ -101,6 +101,11 @@ class ArdusubThrusterBus final : public hal::ThrusterBus {
     double sys_status_hz = 0.0;
   };
   ArrivalRates measure_arrivals(std::chrono::milliseconds window);
+  // After open(), not from the tick (`rovctl check`): MAV_CMD_RUN_PREARM_CHECKS, which has ArduSub
+  // run the checks arming would and report failures as "PreArm:" STATUSTEXT. The first failure
+  // it reported within ack_timeout_ms of its COMMAND_ACK (empty: none); none when it did not
+  // acknowledge the command.
+  std::optional<std::string> run_prearm_checks();
   // ArduSub's custom_mode in its last HEARTBEAT.
   std::uint32_t vehicle_mode() const { return vehicle_mode_; }
 

@@ -18,6 +18,7 @@ namespace rovctl::drivers::mavlink {
 // MAV_CMD values used with COMMAND_LONG.
 constexpr std::uint16_t kCmdDoSetMode = 176;
 constexpr std::uint16_t kCmdComponentArmDisarm = 400;
+constexpr std::uint16_t kCmdRunPrearmChecks = 401;
 constexpr std::uint16_t kCmdSetMessageInterval = 511;
 // param2 of ARM_DISARM that forces arming/disarming past the pre-arm checks.
 constexpr float kArmDisarmForceMagic = 21196.0F;

@@ -14,6 +14,7 @@ export async function loadMavlink() {
 
 const MAV_CMD_DO_SET_MODE = 176;
 const MAV_CMD_COMPONENT_ARM_DISARM = 400;
+const MAV_CMD_RUN_PREARM_CHECKS = 401;
 const MAV_CMD_SET_MESSAGE_INTERVAL = 511;
 const ARMED_FLAG = 0x80;          // MAV_MODE_FLAG_SAFETY_ARMED
 const CUSTOM_MODE_ENABLED = 0x01;  // MAV_MODE_FLAG_CUSTOM_MODE_ENABLED
@@ -154,6 +155,12 @@ export class FakeArduSub {
         this.armed = msg._param1 === 1;
         this.ack(msg.command);
         this.sendHeartbeat();  // the new state at once, as ArduSub's next beat would show it
+      } else if (msg.command === MAV_CMD_RUN_PREARM_CHECKS) {
+        this.ack(msg.command);
+        if (this.preArm) {
+          this.send(Object.assign(new this.m.common.StatusText(), {
+            severity: 2, text: `PreArm: ${this.preArm}`, id: 0, chunkSeq: 0 }));
+        }
       } else if (msg.command === MAV_CMD_DO_SET_MODE) {
         if (msg._param1 !== 1) this.errors.push(`DO_SET_MODE base mode ${msg._param1}, not custom (1)`);
         this.customMode = msg._param2;

@@ -16,8 +16,8 @@ let failures = 0;
 function expect(cond, what) { console.log(`${cond ? "ok" : "FAIL"}: ${what}`); if (!cond) failures++; }
 fs.mkdirSync(workDir, { recursive: true });
 
-async function check(name, params) {
-  const peer = new FakeArduSub(mavlink, { params, customMode: 0 });
+async function check(name, params, peerOptions = {}) {
+  const peer = new FakeArduSub(mavlink, { params, customMode: 0, ...peerOptions });
   const port = await peer.start();
   const config = path.join(workDir, name + ".yaml");
   fs.writeFileSync(config, [
@@ -67,7 +67,15 @@ async function check(name, params) {
            `${n} arriving at the rate asked`);
   }
   expect(/^PASS  ArduSub mode: custom mode 0 \(stabilize\)/m.test(out), "the mode ArduSub is in");
+  expect(/^PASS  ArduSub pre-arm checks: no failure reported/m.test(out), "pre-arm checks asked, none failing");
   expect(code === 0, `safe values: rovctl check exits 0 (got ${code})`);
+}
+// ArduSub's pre-arm checks failing: check says ArduSub's own reason without arming.
+{
+  const { code, out } = await check("prearm", { FS_PILOT_INPUT: 2, FS_PILOT_TIMEOUT: 0.5, RC_OVERRIDE_TIME: 3, SYSID_MYGCS: 255 },
+                                    { preArm: "Safety switch" });
+  expect(/^FAIL  ArduSub pre-arm checks: PreArm: Safety switch$/m.test(out), "a PreArm failure: ArduSub's reason, FAIL");
+  expect(code === 2, `a PreArm failure: rovctl check exits 2 (got ${code})`);
 }
 // The GCS id under both of its names (MAV_GCS_SYSID from ArduSub 4.7): a mismatch means ArduSub
 // ignores every command rovctl sends.

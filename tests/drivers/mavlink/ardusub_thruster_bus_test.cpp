@@ -150,6 +150,18 @@ class SteadyClock final : public hal::Clock {
   void sleep_until(std::chrono::nanoseconds) override {}
 };
 
+// `rovctl check` asks ArduSub what would refuse an arm, without arming.
+TEST(ArdusubThrusterBus, PrearmChecksReportArduSubsFailureWithoutArming) {
+  FakeArduSub peer;
+  ArdusubThrusterBus bus(params_for(peer), hal::ThrusterLayout::bluerov2_heavy());
+  std::string error;
+  ASSERT_TRUE(bus.open(error)) << error;
+  EXPECT_EQ(bus.run_prearm_checks(), std::optional<std::string>(""));
+  peer.refuse_arm = true;
+  EXPECT_EQ(bus.run_prearm_checks(), std::optional<std::string>("PreArm: Check mag field"));
+  EXPECT_FALSE(peer.armed);
+}
+
 // ArduSub boots in MANUAL: rovctl asks for its flight mode (DO_SET_MODE, custom mode) before
 // it arms, and arms only once ArduSub took it.
 TEST(ArdusubThrusterBus, BootedInManualItSetsTheFlightModeThenArms) {

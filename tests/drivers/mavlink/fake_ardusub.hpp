@@ -115,6 +115,17 @@ class FakeArduSub {
         r.is_command = mav::unpack(f, r.command);
         r.is_rc_override = mav::unpack(f, r.rc_override);
         r.is_heartbeat = mav::unpack(f, hb);
+        if (r.is_command && r.command.command == mav::kCmdRunPrearmChecks) {
+          mav::CommandAck ack;
+          ack.command = r.command.command;
+          send(ack);
+          if (refuse_arm) {
+            mav::StatusText t;
+            t.severity = 2;
+            mav::set_text(t.text, "PreArm: Check mag field");
+            send(t);
+          }
+        }
         if (r.is_command && r.command.command == mav::kCmdDoSetMode) {
           if (!refuse_mode) mode = static_cast<std::uint32_t>(r.command.params[1]);
           mav::CommandAck ack;
