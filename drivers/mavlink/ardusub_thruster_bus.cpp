@@ -175,7 +175,7 @@ void ArdusubThrusterBus::pump() {
       // ArduSub says why it will not arm before its COMMAND_ACK ("PreArm: Gyros inconsistent",
       // "Arm: Leak Detected"); kept for the refusal's reason.
       const std::string_view t = mavlink::text_of(text.text);
-      if (t.starts_with("PreArm") || t.starts_with("Arm")) {
+      if (t.starts_with("PreArm:") || t.starts_with("Arm:")) {
         prearm_text_.fill('\0');
         t.copy(prearm_text_.data(), prearm_text_.size() - 1);
       }
@@ -301,7 +301,7 @@ hal::BusStatus ArdusubThrusterBus::arm(bool armed) {
     char what[96];
     std::snprintf(what, sizeof(what), "ArduSub stayed in mode %u after DO_SET_MODE %s (%d)%s",
                   static_cast<unsigned>(vehicle_mode_), params_.flight_mode.c_str(), required_mode_,
-                  mode_acks_ > 0 ? ", refused" : ", no answer");
+                  mode_answered_ ? ", refused" : ", no answer");
     explain_refusal(what);
     return hal::BusStatus::fault;
   }
@@ -345,8 +345,8 @@ bool ArdusubThrusterBus::set_flight_mode() {
     wait_a_little();
     pump();
   }
-  return vehicle_mode_ == required ||
-         (mode_acks_ != acks_before && mode_result_ == kMavResultAccepted);
+  mode_answered_ = mode_acks_ != acks_before;
+  return vehicle_mode_ == required || (mode_answered_ && mode_result_ == kMavResultAccepted);
 }
 
 void ArdusubThrusterBus::explain_refusal(const char* what) {
@@ -366,8 +366,7 @@ void ArdusubThrusterBus::explain(ArdusubFault f, Clock::time_point now) {
   explained_ = f;
   // None keeps the last reason (the tick may still be logging it); a refusal was said with
   // ArduSub's own words by explain_refusal().
-  if (f == ArdusubFault::none || f == ArdusubFault::arm_refused)
-    return;  // explain_refusal() said it, with ArduSub's words
+  if (f == ArdusubFault::none || f == ArdusubFault::arm_refused) return;
   std::array<char, 160>& out = reasons_[next_reason_];
   next_reason_ ^= 1U;
   const auto ms = [now](Clock::time_point since) {

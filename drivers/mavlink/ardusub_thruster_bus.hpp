@@ -192,6 +192,7 @@ class ArdusubThrusterBus final : public hal::ThrusterBus {
   std::uint8_t arm_result_ = 0;
   std::uint64_t mode_acks_ = 0;  // COMMAND_ACKs of DO_SET_MODE
   std::uint8_t mode_result_ = 0;
+  bool mode_answered_ = false;  // the last DO_SET_MODE got a COMMAND_ACK
   ArdusubCounters counters_;
 };
 
