@@ -199,9 +199,9 @@ TEST(BusIoThread, HeartbeatGapTurnsStatusDegradedThenFault) {
   EXPECT_EQ(io.heartbeat_age(), 0ns);  // answered at this (manual) instant
   bus.hold();
   clock.advance(10ms);
-  EXPECT_EQ(io.write(thrust(0.1)), hal::BusStatus::ok);  // the peer hangs on this one
+  EXPECT_EQ(io.write(thrust(0.1)), hal::BusStatus::ok);                // the peer hangs on this one
   ASSERT_TRUE(eventually([&] { return bus.written().size() == 2; }));  // inside the bus call
-  clock.advance(95ms);                                   // 105 ms since the last answer
+  clock.advance(95ms);  // 105 ms since the last answer
   EXPECT_EQ(io.write(thrust(0.1)), hal::BusStatus::degraded);
   clock.advance(100ms);  // 205 ms: the controller's watchdog has stopped the thrusters
   EXPECT_EQ(io.write(thrust(0.1)), hal::BusStatus::fault);
