@@ -428,13 +428,12 @@ std::optional<float> ArdusubThrusterBus::read_parameter(std::string_view id) {
 
 std::optional<std::string> ArdusubThrusterBus::run_prearm_checks() {
   if (!opened_) return std::nullopt;
-  mavlink::CommandLong c;
-  c.command = mavlink::kCmdRunPrearmChecks;
-  c.target_system = static_cast<std::uint8_t>(params_.vehicle_system_id);
-  c.target_component = static_cast<std::uint8_t>(params_.vehicle_component_id);
   prearm_text_.fill('\0');
   const std::uint64_t acks_before = counters_.acks_received;
-  if (!send(c)) return std::nullopt;
+  if (!send(mavlink::run_prearm_checks(static_cast<std::uint8_t>(params_.vehicle_system_id),
+                                       static_cast<std::uint8_t>(params_.vehicle_component_id)))) {
+    return std::nullopt;
+  }
   const auto wait = std::chrono::milliseconds(params_.ack_timeout_ms);
   auto deadline = Clock::now() + wait;
   bool acknowledged = false;

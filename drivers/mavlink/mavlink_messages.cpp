@@ -25,6 +25,14 @@ CommandLong do_set_mode(std::uint8_t target_system, std::uint8_t target_componen
   return c;
 }
 
+CommandLong run_prearm_checks(std::uint8_t target_system, std::uint8_t target_component) {
+  CommandLong c;
+  c.command = kCmdRunPrearmChecks;
+  c.target_system = target_system;
+  c.target_component = target_component;
+  return c;
+}
+
 CommandLong set_message_interval(std::uint8_t target_system, std::uint8_t target_component,
                                  std::uint32_t message_id, float interval_us) {
   CommandLong c;

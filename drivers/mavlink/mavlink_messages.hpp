@@ -270,6 +270,8 @@ CommandLong arm_disarm(std::uint8_t target_system, std::uint8_t target_component
 // COMMAND_LONG MAV_CMD_DO_SET_MODE to the autopilot's `custom_mode` (ArduSub: STABILIZE 0, ...).
 CommandLong do_set_mode(std::uint8_t target_system, std::uint8_t target_component,
                         std::uint32_t custom_mode);
+// COMMAND_LONG MAV_CMD_RUN_PREARM_CHECKS: the autopilot reports failing checks as STATUSTEXT.
+CommandLong run_prearm_checks(std::uint8_t target_system, std::uint8_t target_component);
 // COMMAND_LONG MAV_CMD_SET_MESSAGE_INTERVAL: `interval_us` -1 stops the stream, 0 restores its
 // default rate.
 CommandLong set_message_interval(std::uint8_t target_system, std::uint8_t target_component,

@@ -147,8 +147,7 @@ export class FakeArduSub {
       }
       if (msg.command === MAV_CMD_COMPONENT_ARM_DISARM) {
         if (msg._param1 === 1 && this.preArm) {
-          this.send(Object.assign(new this.m.common.StatusText(), {
-            severity: 2, text: `PreArm: ${this.preArm}`, id: 0, chunkSeq: 0 }));
+          this.sendPreArmFailure();
           this.ack(msg.command, 4);  // MAV_RESULT_FAILED
           return;
         }
@@ -157,10 +156,7 @@ export class FakeArduSub {
         this.sendHeartbeat();  // the new state at once, as ArduSub's next beat would show it
       } else if (msg.command === MAV_CMD_RUN_PREARM_CHECKS) {
         this.ack(msg.command);
-        if (this.preArm) {
-          this.send(Object.assign(new this.m.common.StatusText(), {
-            severity: 2, text: `PreArm: ${this.preArm}`, id: 0, chunkSeq: 0 }));
-        }
+        if (this.preArm) this.sendPreArmFailure();
       } else if (msg.command === MAV_CMD_DO_SET_MODE) {
         if (msg._param1 !== 1) this.errors.push(`DO_SET_MODE base mode ${msg._param1}, not custom (1)`);
         this.customMode = msg._param2;
@@ -203,6 +199,12 @@ export class FakeArduSub {
     } else {
       bad("not a status message");
     }
+  }
+
+  // ArduSub's reason for refusing an arm, as its pre-arm texts come (MAV_SEVERITY_CRITICAL).
+  sendPreArmFailure() {
+    this.send(Object.assign(new this.m.common.StatusText(), {
+      severity: 2, text: `PreArm: ${this.preArm}`, id: 0, chunkSeq: 0 }));
   }
 
   ack(command, result = 0) {

@@ -91,6 +91,13 @@ class FakeArduSub {
       (void)link_.send(std::span<const std::uint8_t>(out.data(), n));
     }
   }
+  // The reason ArduSub gives for refusing an arm (MAV_SEVERITY_CRITICAL, as its pre-arm texts).
+  void send_prearm_failure() {
+    mav::StatusText t;
+    t.severity = 2;
+    mav::set_text(t.text, "PreArm: Check mag field");
+    send(t);
+  }
   bool receive(mav::Frame& f) {
     if (serial_fd_ < 0) return link_.receive(f) == mav::MavlinkUdpLink::Io::ok;
     while (!parser_.next(f)) {
@@ -119,12 +126,7 @@ class FakeArduSub {
           mav::CommandAck ack;
           ack.command = r.command.command;
           send(ack);
-          if (refuse_arm) {
-            mav::StatusText t;
-            t.severity = 2;
-            mav::set_text(t.text, "PreArm: Check mag field");
-            send(t);
-          }
+          if (refuse_arm) send_prearm_failure();
         }
         if (r.is_command && r.command.command == mav::kCmdDoSetMode) {
           if (!refuse_mode) mode = static_cast<std::uint32_t>(r.command.params[1]);
@@ -136,12 +138,7 @@ class FakeArduSub {
         if (r.is_command && r.command.command == mav::kCmdComponentArmDisarm) {
           const bool accept = !refuse_arm || r.command.params[0] == 0.0F;
           if (accept) armed = r.command.params[0] == 1.0F;
-          if (!accept) {
-            mav::StatusText t;
-            t.severity = 2;  // MAV_SEVERITY_CRITICAL, as ArduSub's pre-arm messages
-            mav::set_text(t.text, "PreArm: Check mag field");
-            send(t);
-          }
+          if (!accept) send_prearm_failure();
           mav::CommandAck ack;
           ack.command = r.command.command;
           ack.result = accept ? 0 : 4;  // MAV_RESULT_ACCEPTED / FAILED
