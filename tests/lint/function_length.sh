@@ -7,7 +7,7 @@
 set -euo pipefail
 src=${1:?usage: function_length.sh SOURCE_DIR [MAX_LINES]}
 max=${2:-80}
-if ! ctags --version 2>/dev/null | grep -q "Universal Ctags"; then
+if [[ "$(ctags --version 2>/dev/null || true)" != *"Universal Ctags"* ]]; then
   echo "function_length: Universal Ctags not found (apt-get install universal-ctags): skipped"
   exit 77
 fi
@@ -21,7 +21,7 @@ if [ -z "$lengths" ]; then
   exit 1
 fi
 echo "function_length: the 10 longest functions in app/runtime, control, drivers (lines, where, name):"
-echo "$lengths" | head -n 10 | sed 's/^/  /'
+echo "$lengths" | sed -n '1,10s/^/  /p'
 over=$(echo "$lengths" | awk -v max="$max" '$1 > max')
 if [ -n "$over" ]; then
   echo "function_length: longer than $max lines (split them into named parts):"
