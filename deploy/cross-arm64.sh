@@ -1,0 +1,176 @@
+#!/usr/bin/env bash
+# The arm64 (aarch64) build, test and package, run from an amd64 Debian bookworm machine:
+# Debian's cross compiler, an arm64 Debian root with the -dev packages rovctl links, the unit and
+# integration tests and `rovctl bench` under qemu-aarch64-static, and rovctl_<version>_arm64.deb.
+# Usage: bash deploy/setup.sh --arch arm64 [--build-only] [--target T ...] [extra cmake args...]
+#   --build-only   cross-compile only (no emulated tests, bench or .deb)
+#   --target T     build only target T (repeatable; implies --build-only)
+# Environment: ROVCTL_ARM64_JOBS (default nproc), ROVCTL_ARM64_BUILD (default build-arm64).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+build_dir=${ROVCTL_ARM64_BUILD:-build-arm64}
+jobs=${ROVCTL_ARM64_JOBS:-$(nproc)}
+build_only=0
+targets=()
+cmake_args=()
+while [ $# -gt 0 ]; do
+  case $1 in
+    --build-only) build_only=1 ;;
+    --target) targets+=("$2"); build_only=1; shift ;;
+    *) cmake_args+=("$1") ;;
+  esac
+  shift
+done
+
+# Host tools: the cross compiler, the emulator, the root builder, and what the tests and the .deb
+# use on the host (Python for the Modbus peer, dpkg-dev for the package's dependencies).
+host_packages=(crossbuild-essential-arm64 qemu-user-static mmdebstrap cmake ninja-build pkg-config
+  dpkg-dev file python3 python3-pymodbus python3-serial python3-serial-asyncio socat)
+# The arm64 packages rovctl links (only the OpenCV modules it uses), plus the test libraries.
+# OpenCV's CMake package comes from libopencv-dev, unpacked alone (see opencv_cmake_package).
+root_packages=(libc6-dev libstdc++-12-dev libeigen3-dev libopencv-core-dev libopencv-imgproc-dev
+  libopencv-imgcodecs-dev libopencv-videoio-dev libyaml-cpp-dev libmodbus-dev libcpp-httplib-dev
+  libgtest-dev libgmock-dev libbenchmark-dev)
+mirror=http://deb.debian.org/debian
+security_mirror=http://deb.debian.org/debian-security
+root=$PWD/$build_dir/sysroot
+
+install_host_packages() {
+  local missing=() p
+  for p in "${host_packages[@]}"; do
+    [[ "$(dpkg-query -W -f='${Status}' "$p" 2>/dev/null || true)" == "install ok installed" ]] || missing+=("$p")
+  done
+  [ ${#missing[@]} -eq 0 ] && return
+  echo "setup arm64: installing ${missing[*]}"
+  local sudo_cmd=()
+  [ "$(id -u)" -ne 0 ] && sudo_cmd=(sudo)
+  "${sudo_cmd[@]}" apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive "${sudo_cmd[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}"
+}
+
+# OpenCV's CMake package (OpenCVConfig.cmake) ships only in libopencv-dev, which depends on every
+# OpenCV module (VTK, Qt, ...). Unpack that one package without its dependencies, and drop the
+# existence checks of the modules that are not in the root: rovctl's COMPONENTS are checked by
+# find_package itself.
+opencv_cmake_package() {
+  local deb
+  deb=$(ls "$root"/var/cache/rovctl-opencv-dev/libopencv-dev_*_arm64.deb)
+  dpkg-deb -x "$deb" "$root/var/cache/rovctl-opencv-dev/x"
+  cp -r "$root/var/cache/rovctl-opencv-dev/x/usr/lib/aarch64-linux-gnu/cmake" "$root/usr/lib/aarch64-linux-gnu/"
+  cp "$root/var/cache/rovctl-opencv-dev/x/usr/lib/aarch64-linux-gnu/pkgconfig/opencv4.pc" \
+    "$root/usr/lib/aarch64-linux-gnu/pkgconfig/"
+  local modules=$root/usr/lib/aarch64-linux-gnu/cmake/opencv4/OpenCVModules-release.cmake lib module
+  for lib in $(grep -o 'libopencv_[a-z0-9_]*\.so\.[0-9.]*[0-9]' "$modules" | sort -u); do
+    [ -e "$root/usr/lib/aarch64-linux-gnu/$lib" ] && continue
+    module=${lib#lib}
+    module=${module%%.so*}
+    sed -i "/_cmake_import_check_targets ${module} )/d; /_cmake_import_check_files_for_${module} /d" "$modules"
+  done
+  rm -rf "$root/var/cache/rovctl-opencv-dev"
+}
+
+# The arm64 root: unpacked Debian packages (no maintainer scripts, so no emulation needed), made
+# again when the package list changes. The .debs stay in var/cache/apt/archives: the package's
+# dependencies are read from them.
+make_root() {
+  local stamp=$root/.rovctl-packages
+  [ -f "$stamp" ] && [ "$(cat "$stamp")" == "${root_packages[*]}" ] && return
+  rm -rf "$root"
+  mkdir -p "$(dirname "$root")"
+  echo "setup arm64: making the arm64 root $root"
+  local list
+  list=$(
+    IFS=,
+    echo "${root_packages[*]}"
+  )
+  mmdebstrap --variant=extract --arch=arm64 --include="$list" --skip=cleanup/apt/cache,cleanup/apt/lists \
+    bookworm "$root" "deb $mirror bookworm main" "deb $mirror bookworm-updates main" \
+    "deb $security_mirror bookworm-security main"
+  # libopencv-dev alone, through the root's own (verified) package lists.
+  mkdir -p "$root/var/cache/rovctl-opencv-dev"
+  (cd "$root/var/cache/rovctl-opencv-dev" && apt-get -q -o Dir="$root/" \
+    -o Dir::State::status="$root/var/lib/dpkg/status" -o APT::Architecture=arm64 \
+    -o APT::Architectures::=arm64 -o Debug::NoLocking=1 download libopencv-dev)
+  opencv_cmake_package
+  echo "${root_packages[*]}" >"$stamp"
+}
+
+# Tests that cannot run under user-mode emulation, each as "ctest regex|reason".
+emulation_skips=()
+# Not arm64 code, and so not run here (the native build runs them): the include-layering probes
+# (compile checks), the lint and docs checks (scripts over the sources), the water-set scripts
+# (Python over the committed images), and the slow closed-loop trials and browser test.
+native_only_labels='slow|layering|lint|docs|water_set|browser'
+
+emulated_tests() {
+  local exclude="" entry regex reason n skipped=0
+  for entry in "${emulation_skips[@]}"; do
+    regex=${entry%%|*}
+    reason=${entry#*|}
+    n=$(ctest --test-dir "$build_dir" -N -L 'unit|integration' -LE "$native_only_labels" -R "$regex" |
+      sed -n 's/^Total Tests: //p')
+    echo "setup arm64: skip under emulation ($n): $regex: $reason"
+    skipped=$((skipped + n))
+    exclude="${exclude:+$exclude|}$regex"
+  done
+  local log=$build_dir/emulated-tests.log rc=0
+  ctest --test-dir "$build_dir" --output-on-failure -j"$jobs" -L 'unit|integration' \
+    -LE "$native_only_labels" ${exclude:+-E "$exclude"} 2>&1 | tee "$log" || rc=$?
+  local total failed not_run
+  total=$(sed -n 's/.*tests failed out of \([0-9]*\).*/\1/p' "$log")
+  failed=$(sed -n 's/.* \([0-9]*\) tests failed out of.*/\1/p' "$log")
+  not_run=$(grep -c '(Skipped)' "$log" || true)
+  echo "setup arm64: emulated tests: $((total - failed - not_run)) passed, $((not_run + skipped)) skipped" \
+    "($not_run by the test itself, $skipped under emulation), $failed failed"
+  return "$rc"
+}
+
+# The .deb's dependencies, as dpkg-shlibdeps computes them for the amd64 package: it reads each
+# library's symbols/shlibs from its unpacked arm64 package (the host's package database knows
+# only amd64 libraries).
+deb_depends() {
+  local work=$build_dir/shlibdeps soname deb needed=()
+  rm -rf "$work"
+  mkdir -p "$work/pkgs" "$work/debian"
+  mapfile -t needed < <(aarch64-linux-gnu-objdump -p "$build_dir/rovctl" | awk '/NEEDED/ {print $2}')
+  local search_args=()
+  for deb in "$root"/var/cache/apt/archives/*.deb; do
+    for soname in "${needed[@]}"; do
+      if dpkg-deb -c "$deb" | grep -q "/$soname\$\|/$soname -> "; then
+        dpkg-deb -R "$deb" "$work/pkgs/$(basename "$deb" .deb)"
+        search_args+=(-S"$work/pkgs/$(basename "$deb" .deb)")
+        break
+      fi
+    done
+  done
+  printf 'Source: rovctl\n\nPackage: rovctl\nArchitecture: arm64\n' >"$work/debian/control"
+  (cd "$work" && dpkg-shlibdeps -O "${search_args[@]}" "$PWD/../rovctl" 2>/dev/null) |
+    sed -n 's/^shlibs:Depends=//p'
+}
+
+install_host_packages
+make_root
+launcher=()
+command -v ccache >/dev/null && launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache -DCMAKE_C_COMPILER_LAUNCHER=ccache)
+cmake -S . -B "$build_dir" -G Ninja -DCMAKE_BUILD_TYPE=Release \
+  -DCMAKE_TOOLCHAIN_FILE="$PWD/deploy/toolchain-arm64.cmake" -DROVCTL_ARM64_SYSROOT="$root" \
+  "${launcher[@]}" "${cmake_args[@]}" >/dev/null
+target_args=()
+for t in "${targets[@]}"; do target_args+=(--target "$t"); done
+cmake --build "$build_dir" -j"$jobs" "${target_args[@]}"
+echo "setup arm64: built $build_dir ${targets[*]:-(everything)}"
+[ "$build_only" -eq 1 ] && exit 0
+
+emulator=(qemu-aarch64-static -L "$root")
+file "$build_dir/rovctl"
+tests_rc=0
+emulated_tests || tests_rc=$?
+echo "setup arm64: rovctl bench under qemu-aarch64-static (emulated: its times are not the board's)"
+"${emulator[@]}" "$build_dir/rovctl" bench
+depends=$(deb_depends)
+echo "setup arm64: Depends: $depends"
+cmake -B "$build_dir" -DROVCTL_DEB_DEPENDS="$depends" >/dev/null
+(cd "$build_dir" && cpack -G DEB >/dev/null)
+ls "$build_dir"/rovctl_*_arm64.deb
+exit "$tests_rc"
