@@ -5,6 +5,9 @@
 # Usage: bash deploy/setup.sh --arch arm64 [--build-only] [--target T ...] [extra cmake args...]
 #   --build-only   cross-compile only (no emulated tests, bench or .deb)
 #   --target T     build only target T (repeatable; implies --build-only)
+#   --host-only    install the host's packages and stop
+#   --root-only    install the host's packages, make the arm64 root and stop (CI makes it while
+#                  the native build runs)
 # Environment: ROVCTL_ARM64_JOBS (default nproc), ROVCTL_ARM64_BUILD (default build-arm64).
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -12,11 +15,14 @@ cd "$(dirname "$0")/.."
 build_dir=${ROVCTL_ARM64_BUILD:-build-arm64}
 jobs=${ROVCTL_ARM64_JOBS:-$(nproc)}
 build_only=0
+stop_after=""
 targets=()
 cmake_args=()
 while [ $# -gt 0 ]; do
   case $1 in
     --build-only) build_only=1 ;;
+    --host-only) stop_after=host ;;
+    --root-only) stop_after=root ;;
     --target) targets+=("$2"); build_only=1; shift ;;
     *) cmake_args+=("$1") ;;
   esac
@@ -70,6 +76,14 @@ opencv_cmake_package() {
   rm -rf "$root/var/cache/rovctl-opencv-dev"
 }
 
+# An unpacked root runs no maintainer scripts, so the alternatives they would register are made
+# here: the reference BLAS and LAPACK that OpenCV's core links.
+link_alternatives() {
+  local lib=$root/usr/lib/aarch64-linux-gnu
+  ln -sfn blas/libblas.so.3 "$lib/libblas.so.3"
+  ln -sfn lapack/liblapack.so.3 "$lib/liblapack.so.3"
+}
+
 # The arm64 root: unpacked Debian packages (no maintainer scripts, so no emulation needed), made
 # again when the package list changes. The .debs stay in var/cache/apt/archives: the package's
 # dependencies are read from them.
@@ -93,10 +107,12 @@ make_root() {
     -o Dir::State::status="$root/var/lib/dpkg/status" -o APT::Architecture=arm64 \
     -o APT::Architectures::=arm64 -o Debug::NoLocking=1 download libopencv-dev)
   opencv_cmake_package
+  link_alternatives
   echo "${root_packages[*]}" >"$stamp"
 }
 
-# Tests that cannot run under user-mode emulation, each as "ctest regex|reason".
+# Tests that cannot run under user-mode emulation, each as "ctest regex|reason": none so far
+# (the estimator's, the view's and the CLI's tests pass under qemu-aarch64-static).
 emulation_skips=()
 # Not arm64 code, and so not run here (the native build runs them): the include-layering probes
 # (compile checks), the lint and docs checks (scripts over the sources), the water-set scripts
@@ -135,9 +151,11 @@ deb_depends() {
   mkdir -p "$work/pkgs" "$work/debian"
   mapfile -t needed < <(aarch64-linux-gnu-objdump -p "$build_dir/rovctl" | awk '/NEEDED/ {print $2}')
   local search_args=()
-  for deb in "$root"/var/cache/apt/archives/*.deb; do
+  local contents
+  for deb in "$root"/var/cache/apt/archives/lib*.deb; do
+    contents=$(dpkg-deb -c "$deb")
     for soname in "${needed[@]}"; do
-      if dpkg-deb -c "$deb" | grep -q "/$soname\$\|/$soname -> "; then
+      if grep -q "/$soname\$\|/$soname -> " <<<"$contents"; then
         dpkg-deb -R "$deb" "$work/pkgs/$(basename "$deb" .deb)"
         search_args+=(-S"$work/pkgs/$(basename "$deb" .deb)")
         break
@@ -145,12 +163,14 @@ deb_depends() {
     done
   done
   printf 'Source: rovctl\n\nPackage: rovctl\nArchitecture: arm64\n' >"$work/debian/control"
-  (cd "$work" && dpkg-shlibdeps -O "${search_args[@]}" "$PWD/../rovctl" 2>/dev/null) |
+  (cd "$work" && DEB_HOST_ARCH=arm64 DEB_HOST_MULTIARCH=aarch64-linux-gnu dpkg-shlibdeps -O "${search_args[@]}" "$PWD/../rovctl") |
     sed -n 's/^shlibs:Depends=//p'
 }
 
 install_host_packages
+[ "$stop_after" == host ] && exit 0
 make_root
+[ "$stop_after" == root ] && exit 0
 launcher=()
 command -v ccache >/dev/null && launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache -DCMAKE_C_COMPILER_LAUNCHER=ccache)
 cmake -S . -B "$build_dir" -G Ninja -DCMAKE_BUILD_TYPE=Release \
@@ -172,5 +192,12 @@ depends=$(deb_depends)
 echo "setup arm64: Depends: $depends"
 cmake -B "$build_dir" -DROVCTL_DEB_DEPENDS="$depends" >/dev/null
 (cd "$build_dir" && cpack -G DEB >/dev/null)
-ls "$build_dir"/rovctl_*_arm64.deb
+deb=$(ls "$build_dir"/rovctl_*_arm64.deb)
+dpkg -I "$deb"
+# Its dependencies resolve on bookworm arm64: apt, with the root's package lists and an empty
+# package database, plans the install of the .deb and everything it needs.
+apt-get -q -o Dir="$root/" -o Dir::State::status="$root/var/lib/dpkg/status" \
+  -o APT::Architecture=arm64 -o APT::Architectures::=arm64 -o Debug::NoLocking=1 \
+  install -s --no-install-recommends "./$deb" | grep -E '^Inst rovctl|newly installed'
+echo "setup arm64: $deb"
 exit "$tests_rc"
