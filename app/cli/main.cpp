@@ -46,6 +46,9 @@ commands:
   thrusters  --config FILE --test [--yes] motor test, one thruster at a time
   thrusters  --config FILE --safe [--timeout-ms N] neutral + disarm, exit 0 once acknowledged
   record     --config FILE --out DIR [--frames N]  save timestamped stereo pairs
+  tune-marker --config FILE --pairs DIR --out FILE [--images DIR] [--json] [--force]
+             the marker's hue windows and floors measured in a recording (DIR as
+             `record` writes it), as a `marker:` config fragment, with figures
   params     [--config FILE]              every config parameter: unit, range, default, meaning
 
 exit codes: 0 success, 1 runtime failure, 2 usage or config error
@@ -74,6 +77,7 @@ int main(int argc, char** argv) {
     if (command == "check") return command_check(words);
     if (command == "thrusters") return command_thrusters(words);
     if (command == "record") return command_record(words);
+    if (command == "tune-marker") return command_tune_marker(words);
     if (command == "study") return command_study(words);
     if (command == "params") return command_params(words);
     if (command == "view") return command_view(words);
