@@ -46,6 +46,8 @@ commands:
   thrusters  --config FILE --test [--yes] motor test, one thruster at a time
   thrusters  --config FILE --safe [--timeout-ms N] neutral + disarm, exit 0 once acknowledged
   record     --config FILE --out DIR [--frames N]  save timestamped stereo pairs
+  calibrate  --pairs DIR --board chessboard:COLSxROWS:SQUARE_MM --out FILE [--json] [--force]
+             stereo calibration from a recording of a chessboard (COLSxROWS inner corners)
   params     [--config FILE]              every config parameter: unit, range, default, meaning
 
 exit codes: 0 success, 1 runtime failure, 2 usage or config error
@@ -78,6 +80,7 @@ int main(int argc, char** argv) {
     if (command == "params") return command_params(words);
     if (command == "view") return command_view(words);
     if (command == "faults") return command_faults(words);
+    if (command == "calibrate") return command_calibrate(words);
     std::cerr << "rovctl: unknown command '" << command << "'\n" << kUsage;
     return kExitUsage;
   } catch (const UsageError& e) {
