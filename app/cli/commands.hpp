@@ -21,5 +21,6 @@ int command_study(const Words& words);        // the paper's GA-parameter study
 int command_params(const Words& words);       // every declared parameter, as a markdown table
 int command_view(const Words& words);         // the operator view replaying a finished run
 int command_faults(const Words& words);       // the failsafe fault matrix on the mock HAL
+int command_calibrate(const Words& words);    // stereo calibration from chessboard pairs
 
 }  // namespace rovctl::app

@@ -46,6 +46,8 @@ commands:
   thrusters  --config FILE --test [--yes] motor test, one thruster at a time
   thrusters  --config FILE --safe [--timeout-ms N] neutral + disarm, exit 0 once acknowledged
   record     --config FILE --out DIR [--frames N]  save timestamped stereo pairs
+  calibrate  --pairs DIR --board chessboard:COLSxROWS:SQUARE_MM --out FILE [--json] [--force]
+             stereo calibration from a recording of a chessboard (COLSxROWS inner corners)
   tune-marker --config FILE --pairs DIR --out FILE [--images DIR] [--json] [--force]
              the marker's hue windows and floors measured in a recording (DIR as
              `record` writes it), as a `marker:` config fragment, with figures
@@ -82,6 +84,7 @@ int main(int argc, char** argv) {
     if (command == "params") return command_params(words);
     if (command == "view") return command_view(words);
     if (command == "faults") return command_faults(words);
+    if (command == "calibrate") return command_calibrate(words);
     std::cerr << "rovctl: unknown command '" << command << "'\n" << kUsage;
     return kExitUsage;
   } catch (const UsageError& e) {

@@ -210,6 +210,10 @@ void describe(hal::ParamVisitor& v, ValidationLimits& l) {
           {"m", 0.001, 5.0, "calibration: longest stereo baseline |T| (T in metres)"});
   v.param("max_rig_rotation_deg", l.max_rig_rotation_deg,
           {"deg", 0.0, 180.0, "calibration: largest angle between the two cameras (R)"});
+  v.param("expected_baseline_m", l.expected_baseline_m,
+          {"m", 0.0, 5.0,
+           "calibration: the baseline measured on the rig, for `rovctl check` (0: not given; "
+           "PASS within 2 %, WARN within 5 %, FAIL beyond)"});
   v.param("thruster_min_singular_ratio", l.thruster_min_singular_ratio,
           {"-", 0.0, 1.0,
            "thrusters: least ratio of smallest to largest singular value of the effectiveness "
