@@ -15,6 +15,7 @@
 #include "drivers/mavlink/ardusub_failsafe_params.hpp"
 #include "drivers/mavlink/ardusub_gcs_id.hpp"
 #include "drivers/mavlink/ardusub_thruster_bus.hpp"
+#include "drivers/v4l2/v4l2_stereo_camera.hpp"
 
 namespace rovctl::app {
 namespace {
@@ -28,6 +29,30 @@ struct Checker {
     if (!ok) ++failures;
   }
 };
+
+// The V4L2 cameras' controls as open() set them: set against read back, WARN for a control the
+// camera lacks, FAIL for a value it cannot honour. True when one was refused.
+bool check_camera_controls(Checker& check, const AppConfig& config,
+                           const hal::StereoCamera& camera) {
+  const auto* v4l2 = dynamic_cast<const drivers::V4l2StereoCamera*>(&camera);
+  if (v4l2 == nullptr) return false;
+  bool refused = false;
+  for (const drivers::ControlReportLine& l : v4l2->controls_report()) {
+    if (l.level == drivers::ControlLevel::fail) {
+      // The key the camera cannot honour, with its file and line.
+      const std::size_t at = l.text.find("camera.v4l2.");
+      const std::string where =
+          at == std::string::npos
+              ? std::string()
+              : config_location(config, l.text.substr(at, l.text.find(' ', at) - at)) + ": ";
+      check.line(false, "camera", where + l.text);
+      refused = true;
+    } else {
+      std::cout << drivers::to_string(l.level) << "  camera " << l.text << "\n";
+    }
+  }
+  return refused;
+}
 
 // ArduSub's own failsafes are what stops the vehicle when rovctl dies: each one read back, with
 // whether its value is safe for rovctl (drivers/mavlink/ardusub_failsafe_params).
@@ -136,7 +161,9 @@ int command_check(const Words& words) {
 
   VehicleBackends hw = make_vehicle_backends(config, rig);
   std::string error;
-  if (hw.camera->open(error)) {
+  const bool opened = hw.camera->open(error);
+  const bool refused = check_camera_controls(check, config, *hw.camera);
+  if (opened) {
     hal::StereoFrame frame;
     hal::GrabStatus status = hal::GrabStatus::timeout;
     for (int attempt = 0; attempt < 30 && status != hal::GrabStatus::ok; ++attempt) {
@@ -161,7 +188,7 @@ int command_check(const Words& words) {
     }
     check.line(size_ok, "camera", detail);
     hw.camera->close();
-  } else {
+  } else if (!refused) {  // a refused control is its own FAIL line above
     check.line(false, "camera", error);
   }
   if (hw.bus->open(error)) {
