@@ -16,6 +16,7 @@
 #include "drivers/mavlink/ardusub_failsafe_params.hpp"
 #include "drivers/mavlink/ardusub_gcs_id.hpp"
 #include "drivers/mavlink/ardusub_thruster_bus.hpp"
+#include "drivers/v4l2/v4l2_stereo_camera.hpp"
 #include "estimator/stereo_calibration.hpp"
 
 namespace rovctl::app {
@@ -72,6 +73,30 @@ void check_calibration_figures(Checker& check, const AppConfig& config, const ha
                      " % from validation.expected_baseline_m " + figure(expected_m * 1000.0, 1) +
                      " mm (PASS <= 2 %, WARN <= 5 %)");
   }
+}
+
+// The V4L2 cameras' controls as open() set them: set against read back, WARN for a control the
+// camera lacks, FAIL for a value it cannot honour. True when one was refused.
+bool check_camera_controls(Checker& check, const AppConfig& config,
+                           const hal::StereoCamera& camera) {
+  const auto* v4l2 = dynamic_cast<const drivers::V4l2StereoCamera*>(&camera);
+  if (v4l2 == nullptr) return false;
+  bool refused = false;
+  for (const drivers::ControlReportLine& l : v4l2->controls_report()) {
+    if (l.level == drivers::ControlLevel::fail) {
+      // The key the camera cannot honour, with its file and line.
+      const std::size_t at = l.text.find("camera.v4l2.");
+      const std::string where =
+          at == std::string::npos
+              ? std::string()
+              : config_location(config, l.text.substr(at, l.text.find(' ', at) - at)) + ": ";
+      check.line(false, "camera", where + l.text);
+      refused = true;
+    } else {
+      std::cout << drivers::to_string(l.level) << "  camera " << l.text << "\n";
+    }
+  }
+  return refused;
 }
 
 // ArduSub's own failsafes are what stops the vehicle when rovctl dies: each one read back, with
@@ -182,7 +207,9 @@ int command_check(const Words& words) {
 
   VehicleBackends hw = make_vehicle_backends(config, rig);
   std::string error;
-  if (hw.camera->open(error)) {
+  const bool opened = hw.camera->open(error);
+  const bool refused = check_camera_controls(check, config, *hw.camera);
+  if (opened) {
     hal::StereoFrame frame;
     hal::GrabStatus status = hal::GrabStatus::timeout;
     for (int attempt = 0; attempt < 30 && status != hal::GrabStatus::ok; ++attempt) {
@@ -207,7 +234,7 @@ int command_check(const Words& words) {
     }
     check.line(size_ok, "camera", detail);
     hw.camera->close();
-  } else {
+  } else if (!refused) {  // a refused control is its own FAIL line above
     check.line(false, "camera", error);
   }
   if (hw.bus->open(error)) {

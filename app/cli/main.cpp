@@ -17,9 +17,10 @@ commands:
   sim        [--config FILE] [--trials N] [--seed S] [--realtime] [--json] [--out DIR]
              [--mission dock|recharge] [--scenario NAME] [--jobs N] [--max-time S]
              [--first-trial I] [--charge-fault FAULT] [--fault NAME[@T_S]]...
-             [--thruster-fault dead|weak|stuck]
+             [--thruster-fault dead|weak|stuck] [--exposure auto|US]
              closed-loop docking (or dock, charge, undock: --mission recharge) on the mock
-             HAL; NAME: clear, turbid, side_light, bubbles, occluders, noisy, exposure;
+             HAL; NAME: clear, turbid, side_light, bubbles, occluders, noisy, exposure
+             (exposure: auto exposure against camera.v4l2.exposure_time_us, or --exposure);
              FAULT (recharge, injected mid-charge): none, knock, knocks, surge, charger,
              operator, camera; --fault (repeatable) injects NAME at T_S (default 0):
              camera_lost, camera_drop, frozen_frames, stale_frames, stamp_skew,
