@@ -234,7 +234,7 @@ CalibrationFigures load_calibration_figures(const std::string& file) {
   return f;
 }
 
-void save_stereo_calibration(const std::string& file, const hal::StereoRig& rig) {
+void write_stereo_rig(cv::FileStorage& fs, const hal::StereoRig& rig) {
   auto K = [](const hal::CameraModel& c) -> cv::Mat {
     return (cv::Mat_<double>(3, 3) << c.fx_px, 0, c.cx_px, 0, c.fy_px, c.cy_px, 0, 0, 1);
   };
@@ -246,14 +246,17 @@ void save_stereo_calibration(const std::string& file, const hal::StereoRig& rig)
     for (int c = 0; c < 3; ++c) R.at<double>(r, c) = rig.T_cr_cl.linear()(r, c);
     T.at<double>(r) = rig.T_cr_cl.translation()(r);
   }
+  fs << "K1" << K(rig.left) << "D1" << D(rig.left) << "K2" << K(rig.right) << "D2" << D(rig.right);
+  fs << "R" << R << "T" << T;
+}
+
+void save_stereo_calibration(const std::string& file, const hal::StereoRig& rig) {
   const std::string tmp = file + ".tmp";
   {
     cv::FileStorage fs(tmp, cv::FileStorage::WRITE | cv::FileStorage::FORMAT_YAML);
     if (!fs.isOpened()) throw std::runtime_error(file + ": cannot write calibration file");
     fs << "image_size" << std::vector<int>{rig.left.width_px, rig.left.height_px};
-    fs << "K1" << K(rig.left) << "D1" << D(rig.left) << "K2" << K(rig.right) << "D2"
-       << D(rig.right);
-    fs << "R" << R << "T" << T;
+    write_stereo_rig(fs, rig);
   }
   std::filesystem::rename(tmp, file);  // never a half-written calibration
 }

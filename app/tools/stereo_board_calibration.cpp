@@ -9,6 +9,8 @@
 #include <opencv2/calib3d.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "estimator/stereo_calibration.hpp"
+
 namespace rovctl::app {
 namespace {
 
@@ -403,23 +405,10 @@ StereoBoardCalibration calibrate_stereo_board(const std::vector<BoardView>& view
 
 std::string calibration_yaml(const StereoBoardCalibration& c, const std::string& board_text,
                              const std::string& date_utc) {
-  const hal::StereoRig& rig = c.rig;
-  auto K = [](const hal::CameraModel& m) -> cv::Mat {
-    return (cv::Mat_<double>(3, 3) << m.fx_px, 0, m.cx_px, 0, m.fy_px, m.cy_px, 0, 0, 1);
-  };
-  auto D = [](const hal::CameraModel& m) -> cv::Mat {
-    return (cv::Mat_<double>(1, 5) << m.k1, m.k2, m.p1, m.p2, m.k3);
-  };
-  cv::Mat R(3, 3, CV_64F), T(3, 1, CV_64F);
-  for (int r = 0; r < 3; ++r) {
-    for (int col = 0; col < 3; ++col) R.at<double>(r, col) = rig.T_cr_cl.linear()(r, col);
-    T.at<double>(r) = rig.T_cr_cl.translation()(r);
-  }
   cv::FileStorage fs(
       ".yaml", cv::FileStorage::WRITE | cv::FileStorage::MEMORY | cv::FileStorage::FORMAT_YAML);
   fs << "image_size" << std::vector<int>{c.image_size.width, c.image_size.height};
-  fs << "K1" << K(rig.left) << "D1" << D(rig.left) << "K2" << K(rig.right) << "D2" << D(rig.right);
-  fs << "R" << R << "T" << T;
+  estimator::write_stereo_rig(fs, c.rig);
   fs << "T_unit"
      << "m";
   fs << "rms_reprojection_px" << c.rms_px;
