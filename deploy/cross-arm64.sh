@@ -2,7 +2,10 @@
 # The arm64 (aarch64) build, test and package, run from an amd64 Debian bookworm machine:
 # Debian's cross compiler, an arm64 Debian root with the -dev packages rovctl links, the unit and
 # integration tests and `rovctl bench` under qemu-aarch64-static, and rovctl_<version>_arm64.deb.
-# Usage: bash deploy/setup.sh --arch arm64 [--build-only] [--target T ...] [extra cmake args...]
+# Usage: bash deploy/setup.sh --arch arm64 [--ci | --build-only] [--target T ...] [extra cmake args...]
+#   (none)         everything: build, the tests unit by unit, `rovctl params`, `rovctl sim --trials 2`
+#                  and `rovctl bench` under qemu, the .deb, its contents and its dependencies
+#   --ci           the part fit for CI: build the estimator's tests only and run them under qemu
 #   --build-only   cross-compile only (no emulated tests, bench or .deb)
 #   --target T     build only target T (repeatable; implies --build-only)
 #   --host-only    install the host's packages and stop
@@ -15,12 +18,14 @@ cd "$(dirname "$0")/.."
 build_dir=${ROVCTL_ARM64_BUILD:-build-arm64}
 jobs=${ROVCTL_ARM64_JOBS:-$(nproc)}
 build_only=0
+ci=0
 stop_after=""
 targets=()
 cmake_args=()
 while [ $# -gt 0 ]; do
   case $1 in
     --build-only) build_only=1 ;;
+    --ci) ci=1 ;;
     --host-only) stop_after=host ;;
     --root-only) stop_after=root ;;
     --target) targets+=("$2"); build_only=1; shift ;;
@@ -33,11 +38,14 @@ done
 # use on the host (Python for the Modbus peer, dpkg-dev for the package's dependencies).
 host_packages=(crossbuild-essential-arm64 qemu-user-static mmdebstrap cmake ninja-build pkg-config
   dpkg-dev file python3 python3-pymodbus python3-serial python3-serial-asyncio socat)
-# The arm64 packages rovctl links (only the OpenCV modules it uses), plus the test libraries.
-# OpenCV's CMake package comes from libopencv-dev, unpacked alone (see opencv_cmake_package).
-root_packages=(libc6-dev libstdc++-12-dev libeigen3-dev libopencv-core-dev libopencv-imgproc-dev
-  libopencv-imgcodecs-dev libopencv-videoio-dev libyaml-cpp-dev libmodbus-dev libcpp-httplib-dev
+# The arm64 packages rovctl links, plus the test libraries. OpenCV: only the modules the top
+# CMakeLists.txt asks find_package for, read from it so the two lists cannot drift apart; OpenCV's
+# CMake package comes from libopencv-dev, unpacked alone (see opencv_cmake_package).
+opencv_modules=$(sed -n 's/^find_package(OpenCV [0-9]* REQUIRED COMPONENTS \([a-z0-9 ]*\)).*/\1/p' CMakeLists.txt)
+[ -n "$opencv_modules" ] || { echo "setup arm64: CMakeLists.txt: no find_package(OpenCV ... COMPONENTS ...)" >&2; exit 2; }
+root_packages=(libc6-dev libstdc++-12-dev libeigen3-dev libyaml-cpp-dev libmodbus-dev libcpp-httplib-dev
   libgtest-dev libgmock-dev libbenchmark-dev)
+for m in $opencv_modules; do root_packages+=("libopencv-$m-dev"); done
 mirror=http://deb.debian.org/debian
 security_mirror=http://deb.debian.org/debian-security
 root=$PWD/$build_dir/sysroot
@@ -120,27 +128,92 @@ emulation_skips=(
 # (Python over the committed images), and the slow closed-loop trials and browser test.
 native_only_labels='slow|layering|lint|docs|water_set|browser'
 
+# The test units (tests/CMakeLists.txt's rovctl_add_test_unit labels), counted one by one; the
+# tests outside them (the peers' exchanges) are counted as "other".
+units=(hal estimator control drivers runtime tools view cli)
+
+# Why each test named in $2 (one a line) skipped itself: gtest's GTEST_SKIP message (the line
+# after "Skipped"), or for a script that exits 77 its last line of output; read from ctest's log
+# of the last run ($1).
+skip_reasons() {
+  awk -v names="$2" '
+    BEGIN { n = split(names, list, "\n"); for (i = 1; i <= n; i++) if (list[i] != "") wanted[list[i]] = 1 }
+    /^[0-9]+\/[0-9]+ Test: / { name = $0; sub(/^[0-9]+\/[0-9]+ Test: /, "", name); reason = ""; last = ""; next }
+    /^Output:/ { out = 1; next }
+    /^<end of output>/ {
+      out = 0
+      if (name in wanted) printf "    skipped by itself: %s: %s\n", name, (reason != "" ? reason : last)
+      next
+    }
+    out && after_skip && NF { reason = $0; after_skip = 0 }
+    out && /: Skipped$/ { after_skip = 1 }
+    out && NF && !/^\[/ && !/^-+$/ { last = $0 }
+  ' "$1"
+}
+
+# One ctest pass over the tests selected by "$@"; prints "passed skipped failed" (skipped: by the
+# test itself) and appends the output to the log.
+ctest_counts() {
+  local log=$1 out rc=0
+  shift
+  out=$(ctest --test-dir "$build_dir" --output-on-failure -j"$jobs" "$@" 2>&1) || rc=$?
+  printf '%s\n' "$out" >>"$log"
+  local total failed not_run
+  total=$(sed -n 's/.*tests failed out of \([0-9]*\).*/\1/p' <<<"$out")
+  failed=$(sed -n 's/.* \([0-9]*\) tests failed out of.*/\1/p' <<<"$out")
+  not_run=$(grep -c '^[[:space:]]*[0-9]* - .* (Skipped)$' <<<"$out" || true)
+  [ -n "$total" ] || {
+    total=0
+    failed=0
+  }
+  [ "$rc" -eq 0 ] || [ "$failed" -gt 0 ] || failed=1 # ctest itself failed
+  sed -n 's/^[[:space:]]*[0-9]* - \(.*\) (Skipped)$/\1/p' <<<"$out" >"$log.skipped"
+  echo "$((total - failed - not_run)) $not_run $failed"
+}
+
+# The unit and integration tests under qemu-aarch64-static (the toolchain's CMAKE_CROSSCOMPILING_EMULATOR),
+# unit by unit (or only the units named), with pass/skip/fail counts and each skip's reason.
 emulated_tests() {
-  local exclude="" entry regex reason n skipped=0
+  local selected=("$@")
+  [ ${#selected[@]} -gt 0 ] || selected=("${units[@]}" other)
+  local exclude="" entry regex reason
+  for entry in "${emulation_skips[@]}"; do exclude="${exclude:+$exclude|}${entry%%|*}"; done
+  local log=$build_dir/emulated-tests.log
+  : >"$log"
+  local unit labels counts passed skipped failed emu n total_p=0 total_s=0 total_f=0 report=()
+  local all_units
+  all_units=$(printf '^%s$|' "${units[@]}")
+  for unit in "${selected[@]}"; do
+    if [ "$unit" == other ]; then
+      labels=(-L 'unit|integration' -LE "$native_only_labels|${all_units%|}")
+    else
+      labels=(-L "^$unit\$" -LE "$native_only_labels")
+    fi
+    counts=$(ctest_counts "$log" "${labels[@]}" ${exclude:+-E "$exclude"})
+    read -r passed skipped failed <<<"$counts"
+    emu=0
+    for entry in "${emulation_skips[@]}"; do
+      n=$(ctest --test-dir "$build_dir" -N "${labels[@]}" -R "${entry%%|*}" | sed -n 's/^Total Tests: //p')
+      emu=$((emu + n))
+    done
+    report+=("$(printf '  %-10s %4d passed %3d skipped %3d failed' "$unit" "$passed" $((skipped + emu)) "$failed")")
+    if [ "$skipped" -gt 0 ]; then
+      while IFS= read -r line; do report+=("$line"); done < <(skip_reasons \
+        "$build_dir/Testing/Temporary/LastTest.log" "$(cat "$log.skipped")")
+    fi
+    total_p=$((total_p + passed))
+    total_s=$((total_s + skipped + emu))
+    total_f=$((total_f + failed))
+  done
+  echo "setup arm64: emulated tests under qemu-aarch64-static, per test unit:"
+  printf '%s\n' "${report[@]}"
   for entry in "${emulation_skips[@]}"; do
     regex=${entry%%|*}
     reason=${entry#*|}
-    n=$(ctest --test-dir "$build_dir" -N -L 'unit|integration' -LE "$native_only_labels" -R "$regex" |
-      sed -n 's/^Total Tests: //p')
-    echo "setup arm64: skip under emulation ($n): $regex: $reason"
-    skipped=$((skipped + n))
-    exclude="${exclude:+$exclude|}$regex"
+    echo "    skipped under emulation: $regex: $reason"
   done
-  local log=$build_dir/emulated-tests.log rc=0
-  ctest --test-dir "$build_dir" --output-on-failure -j"$jobs" -L 'unit|integration' \
-    -LE "$native_only_labels" ${exclude:+-E "$exclude"} 2>&1 | tee "$log" || rc=$?
-  local total failed not_run
-  total=$(sed -n 's/.*tests failed out of \([0-9]*\).*/\1/p' "$log")
-  failed=$(sed -n 's/.* \([0-9]*\) tests failed out of.*/\1/p' "$log")
-  not_run=$(grep -c '(Skipped)' "$log" || true)
-  echo "setup arm64: emulated tests: $((total - failed - not_run)) passed, $((not_run + skipped)) skipped" \
-    "($not_run by the test itself, $skipped under emulation), $failed failed"
-  return "$rc"
+  echo "setup arm64: emulated tests: $total_p passed, $total_s skipped, $total_f failed (log: $log)"
+  [ "$total_f" -eq 0 ]
 }
 
 # The .deb's dependencies, as dpkg-shlibdeps computes them for the amd64 package: it reads each
@@ -168,6 +241,36 @@ deb_depends() {
     sed -n 's/^shlibs:Depends=//p'
 }
 
+# The .deb: its control fields and files, unpacked into a scratch arm64 root (the build's root,
+# which holds its libraries) where the installed binary runs under qemu; then apt, with that root's
+# package lists, an empty package database and arm64 as the only architecture, shows each
+# dependency's candidate and plans the install of the .deb and everything it needs.
+package() {
+  local depends deb scratch
+  depends=$(deb_depends)
+  echo "setup arm64: Depends: $depends"
+  cmake -B "$build_dir" -DROVCTL_DEB_DEPENDS="$depends" >/dev/null
+  (cd "$build_dir" && cpack -G DEB >/dev/null)
+  deb=$(ls "$build_dir"/rovctl_*_arm64.deb)
+  dpkg -I "$deb"
+  dpkg -c "$deb"
+  scratch=$build_dir/deb-root
+  rm -rf "$scratch"
+  dpkg-deb -x "$deb" "$scratch"
+  echo "setup arm64: the installed $scratch/usr/bin/rovctl under qemu: rovctl params (first lines)"
+  "${emulator[@]}" "$scratch/usr/bin/rovctl" params >"$build_dir/params-installed.txt"
+  head -3 "$build_dir/params-installed.txt"
+  local apt_arm64=(-o Dir="$root/" -o Dir::State::status="$root/var/lib/dpkg/status"
+    -o APT::Architecture=arm64 -o APT::Architectures::=arm64 -o Debug::NoLocking=1)
+  echo "setup arm64: each dependency on bookworm arm64 (apt-cache policy, candidate):"
+  local pkg
+  for pkg in $(tr ',' '\n' <<<"$depends" | sed 's/(.*//; s/|.*//; s/ //g'); do
+    printf '  %-28s %s\n' "$pkg" "$(apt-cache "${apt_arm64[@]}" policy "$pkg:arm64" | sed -n 's/^ *Candidate: //p')"
+  done
+  apt-get -q "${apt_arm64[@]}" install -s --no-install-recommends "./$deb" | grep -E '^Inst rovctl|newly installed'
+  echo "setup arm64: $deb"
+}
+
 install_host_packages
 [ "$stop_after" == host ] && exit 0
 make_root
@@ -178,27 +281,27 @@ cmake -S . -B "$build_dir" -G Ninja -DCMAKE_BUILD_TYPE=Release \
   -DCMAKE_TOOLCHAIN_FILE="$PWD/deploy/toolchain-arm64.cmake" -DROVCTL_ARM64_SYSROOT="$root" \
   "${launcher[@]}" "${cmake_args[@]}" >/dev/null
 target_args=()
+[ "$ci" -eq 1 ] && targets=(estimator_tests)
 for t in "${targets[@]}"; do target_args+=(--target "$t"); done
 cmake --build "$build_dir" -j"$jobs" "${target_args[@]}"
 echo "setup arm64: built $build_dir ${targets[*]:-(everything)}"
+if [ "$ci" -eq 1 ]; then
+  file "$build_dir/tests/estimator_tests"
+  emulated_tests estimator
+  exit
+fi
 [ "$build_only" -eq 1 ] && exit 0
 
 emulator=(qemu-aarch64-static -L "$root")
 file "$build_dir/rovctl"
 tests_rc=0
 emulated_tests || tests_rc=$?
+echo "setup arm64: rovctl params under qemu-aarch64-static (first lines)"
+"${emulator[@]}" "$build_dir/rovctl" params >"$build_dir/params.txt"
+head -3 "$build_dir/params.txt"
+echo "setup arm64: rovctl sim --trials 2 under qemu-aarch64-static"
+"${emulator[@]}" "$build_dir/rovctl" sim --trials 2
 echo "setup arm64: rovctl bench under qemu-aarch64-static (emulated: its times are not the board's)"
 "${emulator[@]}" "$build_dir/rovctl" bench
-depends=$(deb_depends)
-echo "setup arm64: Depends: $depends"
-cmake -B "$build_dir" -DROVCTL_DEB_DEPENDS="$depends" >/dev/null
-(cd "$build_dir" && cpack -G DEB >/dev/null)
-deb=$(ls "$build_dir"/rovctl_*_arm64.deb)
-dpkg -I "$deb"
-# Its dependencies resolve on bookworm arm64: apt, with the root's package lists and an empty
-# package database, plans the install of the .deb and everything it needs.
-apt-get -q -o Dir="$root/" -o Dir::State::status="$root/var/lib/dpkg/status" \
-  -o APT::Architecture=arm64 -o APT::Architectures::=arm64 -o Debug::NoLocking=1 \
-  install -s --no-install-recommends "./$deb" | grep -E '^Inst rovctl|newly installed'
-echo "setup arm64: $deb"
+package
 exit "$tests_rc"
