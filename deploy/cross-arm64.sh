@@ -128,8 +128,7 @@ emulation_skips=(
 # (Python over the committed images), and the slow closed-loop trials and browser test.
 native_only_labels='slow|layering|lint|docs|water_set|browser'
 
-# The test units (tests/CMakeLists.txt's rovctl_add_test_unit labels), counted one by one; the
-# tests outside them (the peers' exchanges) are counted as "other".
+# The test units (tests/CMakeLists.txt's rovctl_add_test_unit calls).
 units=(hal estimator control drivers runtime tools view cli)
 
 # Why each test named in $2 (one a line) skipped itself: gtest's GTEST_SKIP message (the line
@@ -151,69 +150,70 @@ skip_reasons() {
   ' "$1"
 }
 
-# One ctest pass over the tests selected by "$@"; prints "passed skipped failed" (skipped: by the
-# test itself) and appends the output to the log.
-ctest_counts() {
-  local log=$1 out rc=0
-  shift
-  out=$(ctest --test-dir "$build_dir" --output-on-failure -j"$jobs" "$@" 2>&1) || rc=$?
-  printf '%s\n' "$out" >>"$log"
-  local total failed not_run
-  total=$(sed -n 's/.*tests failed out of \([0-9]*\).*/\1/p' <<<"$out")
-  failed=$(sed -n 's/.* \([0-9]*\) tests failed out of.*/\1/p' <<<"$out")
-  not_run=$(grep -c '^[[:space:]]*[0-9]* - .* (Skipped)$' <<<"$out" || true)
-  [ -n "$total" ] || {
-    total=0
-    failed=0
-  }
-  [ "$rc" -eq 0 ] || [ "$failed" -gt 0 ] || failed=1 # ctest itself failed
-  sed -n 's/^[[:space:]]*[0-9]* - \(.*\) (Skipped)$/\1/p' <<<"$out" >"$log.skipped"
-  echo "$((total - failed - not_run)) $not_run $failed"
+# Which test unit each test belongs to ("name unit" lines): the tests gtest_discover_tests found
+# in each unit's binary. (ctest's -L cannot pick a unit: CMake 3.25's gtest_discover_tests flattens
+# the list "unit;estimator" of its LABELS property, so a test carries the cost label alone.)
+test_units() {
+  local unit f
+  for unit in "${units[@]}"; do
+    for f in "$build_dir/tests/${unit}_tests["*"]_tests.cmake"; do
+      [ -f "$f" ] || continue
+      grep -o 'add_test(\[=\[[^]]*\]=\]' "$f" | sed "s/^add_test(\[=\[\(.*\)\]=\]\$/\1 $unit/"
+    done
+  done
 }
 
-# The unit and integration tests under qemu-aarch64-static (the toolchain's CMAKE_CROSSCOMPILING_EMULATOR),
-# unit by unit (or only the units named), with pass/skip/fail counts and each skip's reason.
+# The unit and integration tests under qemu-aarch64-static (the toolchain's
+# CMAKE_CROSSCOMPILING_EMULATOR), in one ctest pass, counted per test unit (or only the units
+# named; the tests outside the units, the peers' exchanges, as "other"): passed, skipped (each with
+# its reason) and failed, with each failure's output.
 emulated_tests() {
   local selected=("$@")
   [ ${#selected[@]} -gt 0 ] || selected=("${units[@]}" other)
-  local exclude="" entry regex reason
+  local exclude="" entry map=$build_dir/emulated-tests.units log=$build_dir/emulated-tests.log
   for entry in "${emulation_skips[@]}"; do exclude="${exclude:+$exclude|}${entry%%|*}"; done
-  local log=$build_dir/emulated-tests.log
-  : >"$log"
-  local unit labels counts passed skipped failed emu n total_p=0 total_s=0 total_f=0 report=()
-  local all_units
-  all_units=$(printf '^%s$|' "${units[@]}")
-  for unit in "${selected[@]}"; do
-    if [ "$unit" == other ]; then
-      labels=(-L 'unit|integration' -LE "$native_only_labels|${all_units%|}")
-    else
-      labels=(-L "^$unit\$" -LE "$native_only_labels")
-    fi
-    counts=$(ctest_counts "$log" "${labels[@]}" ${exclude:+-E "$exclude"})
-    read -r passed skipped failed <<<"$counts"
-    emu=0
-    for entry in "${emulation_skips[@]}"; do
-      n=$(ctest --test-dir "$build_dir" -N "${labels[@]}" -R "${entry%%|*}" | sed -n 's/^Total Tests: //p')
-      emu=$((emu + n))
-    done
-    report+=("$(printf '  %-10s %4d passed %3d skipped %3d failed' "$unit" "$passed" $((skipped + emu)) "$failed")")
-    if [ "$skipped" -gt 0 ]; then
-      while IFS= read -r line; do report+=("$line"); done < <(skip_reasons \
-        "$build_dir/Testing/Temporary/LastTest.log" "$(cat "$log.skipped")")
-    fi
-    total_p=$((total_p + passed))
-    total_s=$((total_s + skipped + emu))
-    total_f=$((total_f + failed))
-  done
-  echo "setup arm64: emulated tests under qemu-aarch64-static, per test unit:"
-  printf '%s\n' "${report[@]}"
+  test_units >"$map"
+  local regex=""
+  if [ "${selected[*]}" != "${units[*]} other" ]; then
+    # Only the named units' tests: their names, as one anchored regex.
+    regex=$(awk -v want=" ${selected[*]} " 'index(want, " " $2 " ") { gsub(/[][.*+?()|^$\\]/, "\\\\&", $1); printf "%s^%s$", (n++ ? "|" : ""), $1 }' "$map")
+  fi
+  echo "setup arm64: the tests under qemu-aarch64-static (log: $log)"
+  local rc=0
+  ctest --test-dir "$build_dir" --output-on-failure -j"$jobs" -L 'unit|integration' -LE "$native_only_labels" \
+    ${exclude:+-E "$exclude"} ${regex:+-R "$regex"} >"$log" 2>&1 || rc=$?
+  # Each test's result line ("1/78 Test #4: Name ....   Passed  0.52 sec") as "name status".
+  local results=$build_dir/emulated-tests.results
+  sed -n 's/^ *[0-9]*\/[0-9]* Test *#[0-9]*: \([^ ]*\) \.*[ *]*\([A-Za-z]*\).*/\1 \2/p' "$log" >"$results"
+  local skipped_names emulation_skipped
+  skipped_names=$(awk '$2 == "Skipped" || $2 == "Not" { print $1 }' "$results")
+  emulation_skipped=""
+  [ -n "$exclude" ] && emulation_skipped=$(ctest --test-dir "$build_dir" -N -R "$exclude" | sed -n 's/^ *Test *#[0-9]*: //p')
+  echo "setup arm64: emulated tests per test unit:"
+  awk -v sel="${selected[*]}" -v emu="$emulation_skipped" '
+    FNR == 1 { file++ }
+    file == 1 { unit_of[$1] = $2; next }
+    file == 2 {
+      u = ($1 in unit_of) ? unit_of[$1] : "other"
+      if ($2 == "Passed") pass[u]++; else if ($2 == "Skipped" || $2 == "Not") skip[u]++; else fail[u]++
+    }
+    END {
+      n = split(emu, e, "\n")
+      for (i = 1; i <= n; i++) if (e[i] != "") { u = (e[i] in unit_of) ? unit_of[e[i]] : "other"; skip[u]++ }
+      m = split(sel, s, " ")
+      for (i = 1; i <= m; i++) { u = s[i]; printf "  %-10s %4d passed %3d skipped %3d failed\n", u, pass[u], skip[u], fail[u]; tp += pass[u]; ts += skip[u]; tf += fail[u] }
+      printf "setup arm64: emulated tests: %d passed, %d skipped, %d failed\n", tp, ts, tf
+    }' "$map" "$results"
+  local unit
   for entry in "${emulation_skips[@]}"; do
-    regex=${entry%%|*}
-    reason=${entry#*|}
-    echo "    skipped under emulation: $regex: $reason"
+    while read -r name; do
+      unit=$(awk -v n="$name" '$1 == n { print $2 }' "$map")
+      [[ " ${selected[*]} " == *" ${unit:-other} "* ]] && echo "    skipped under emulation: $name: ${entry#*|}"
+    done < <(ctest --test-dir "$build_dir" -N -R "${entry%%|*}" | sed -n 's/^ *Test *#[0-9]*: //p')
   done
-  echo "setup arm64: emulated tests: $total_p passed, $total_s skipped, $total_f failed (log: $log)"
-  [ "$total_f" -eq 0 ]
+  [ -n "$skipped_names" ] && skip_reasons "$build_dir/Testing/Temporary/LastTest.log" "$skipped_names"
+  [ "$rc" -eq 0 ] || sed -n '/The following tests FAILED/,$p' "$log"
+  return "$rc"
 }
 
 # The .deb's dependencies, as dpkg-shlibdeps computes them for the amd64 package: it reads each
