@@ -158,7 +158,7 @@ test_units() {
   for unit in "${units[@]}"; do
     for f in "$build_dir/tests/${unit}_tests["*"]_tests.cmake"; do
       [ -f "$f" ] || continue
-      grep -o 'add_test(\[=\[[^]]*\]=\]' "$f" | sed "s/^add_test(\[=\[\(.*\)\]=\]\$/\1 $unit/"
+      sed -n "s/^add_test(\[=\[\([^]]*\)\]=\].*/\1 $unit/p" "$f"
     done
   done
 }
