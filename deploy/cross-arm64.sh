@@ -280,28 +280,38 @@ command -v ccache >/dev/null && launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache -
 cmake -S . -B "$build_dir" -G Ninja -DCMAKE_BUILD_TYPE=Release \
   -DCMAKE_TOOLCHAIN_FILE="$PWD/deploy/toolchain-arm64.cmake" -DROVCTL_ARM64_SYSROOT="$root" \
   "${launcher[@]}" "${cmake_args[@]}" >/dev/null
-target_args=()
-[ "$ci" -eq 1 ] && targets=(estimator_tests)
-for t in "${targets[@]}"; do target_args+=(--target "$t"); done
-cmake --build "$build_dir" -j"$jobs" "${target_args[@]}"
-echo "setup arm64: built $build_dir ${targets[*]:-(everything)}"
+build() {
+  local target_args=() t
+  for t in "$@"; do target_args+=(--target "$t"); done
+  cmake --build "$build_dir" -j"$jobs" "${target_args[@]}"
+  echo "setup arm64: built $build_dir ${*:-(everything)}"
+}
+
 if [ "$ci" -eq 1 ]; then
+  build estimator_tests
   file "$build_dir/tests/estimator_tests"
   emulated_tests estimator
   exit
 fi
-[ "$build_only" -eq 1 ] && exit 0
+if [ "$build_only" -eq 1 ]; then
+  build "${targets[@]}"
+  exit 0
+fi
 
+# The binary and its package first (the tests' binaries take as long again to build), then the
+# tests, then the emulated closed loop.
 emulator=(qemu-aarch64-static -L "$root")
+build rovctl
 file "$build_dir/rovctl"
-tests_rc=0
-emulated_tests || tests_rc=$?
 echo "setup arm64: rovctl params under qemu-aarch64-static (first lines)"
 "${emulator[@]}" "$build_dir/rovctl" params >"$build_dir/params.txt"
 head -3 "$build_dir/params.txt"
-echo "setup arm64: rovctl sim --trials 2 under qemu-aarch64-static"
-"${emulator[@]}" "$build_dir/rovctl" sim --trials 2
+package
+build
+tests_rc=0
+emulated_tests || tests_rc=$?
 echo "setup arm64: rovctl bench under qemu-aarch64-static (emulated: its times are not the board's)"
 "${emulator[@]}" "$build_dir/rovctl" bench
-package
+echo "setup arm64: rovctl sim --trials 2 under qemu-aarch64-static"
+"${emulator[@]}" "$build_dir/rovctl" sim --trials 2
 exit "$tests_rc"
