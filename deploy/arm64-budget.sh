@@ -16,6 +16,7 @@ if ! command -v qemu-aarch64 >/dev/null; then
   sudo_cmd=()
   [ "$(id -u)" -ne 0 ] && sudo_cmd=(sudo)
   # qemu-user's dynamic qemu-aarch64 loads plugins; the static one in qemu-user-static cannot.
+  "${sudo_cmd[@]}" apt-get update -qq
   DEBIAN_FRONTEND=noninteractive "${sudo_cmd[@]}" apt-get install -y -qq --no-install-recommends qemu-user
 fi
 plugin=$build_dir/qemu_insn_count.so
