@@ -220,7 +220,7 @@ emulated_tests() {
 # library's symbols/shlibs from its unpacked arm64 package (the host's package database knows
 # only amd64 libraries).
 deb_depends() {
-  local work=$build_dir/shlibdeps soname deb needed=()
+  local work=$PWD/$build_dir/shlibdeps soname deb needed=()
   rm -rf "$work"
   mkdir -p "$work/pkgs" "$work/debian"
   mapfile -t needed < <(aarch64-linux-gnu-objdump -p "$build_dir/rovctl" | awk '/NEEDED/ {print $2}')
