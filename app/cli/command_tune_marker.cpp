@@ -196,20 +196,17 @@ void write_figures(const std::string& dir, const std::vector<StereoImages>& pair
   }
 }
 
-// --range-m NEAR,FAR: the marker's working range from the camera, 0.05-20 m, NEAR below FAR.
+// --range-m NEAR,FAR: the marker's working range from the camera, metres, NEAR below FAR.
 void parse_range(const CliArgs& args, ColourTuningOptions& options) {
-  if (!args.has("--range-m")) return;
-  const std::string text = args.get("--range-m");
-  double near = 0.0, far = 0.0;
-  char extra = 0;
-  if (std::sscanf(text.c_str(), "%lf,%lf%c", &near, &far, &extra) != 2 || !(near >= 0.05) ||
-      !(far <= 20.0) || !(near < far)) {
-    throw UsageError("rovctl tune-marker: --range-m " + text +
-                     ": expected NEAR,FAR in metres, 0.05 <= NEAR < FAR <= 20 (" + kUsageLine +
-                     ")");
+  const std::vector<double> range =
+      args.get_ascending("--range-m", 0.0, 20.0, "NEAR,FAR: ascending ranges in (0, 20] m");
+  if (range.empty()) return;
+  if (range.size() != 2) {
+    throw UsageError("rovctl tune-marker: --range-m " + args.get("--range-m") +
+                     ": must be NEAR,FAR, two ranges in metres (" + kUsageLine + ")");
   }
-  options.range_near_m = near;
-  options.range_far_m = far;
+  options.range_near_m = range[0];
+  options.range_far_m = range[1];
 }
 
 }  // namespace
