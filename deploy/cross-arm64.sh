@@ -151,8 +151,7 @@ skip_reasons() {
 }
 
 # Which test unit each test belongs to ("name unit" lines): the tests gtest_discover_tests found
-# in each unit's binary. (ctest's -L cannot pick a unit: CMake 3.25's gtest_discover_tests flattens
-# the list "unit;estimator" of its LABELS property, so a test carries the cost label alone.)
+# in each unit's binary.
 test_units() {
   local unit f
   for unit in "${units[@]}"; do
@@ -182,6 +181,9 @@ emulated_tests() {
   local rc=0
   ctest --test-dir "$build_dir" --output-on-failure -j"$jobs" -L 'unit|integration' -LE "$native_only_labels" \
     ${exclude:+-E "$exclude"} ${regex:+-R "$regex"} >"$log" 2>&1 || rc=$?
+  # Each test's output, kept before the next ctest call (even -N) writes its log again.
+  local outputs=$build_dir/emulated-tests.outputs.log
+  cp "$build_dir/Testing/Temporary/LastTest.log" "$outputs"
   # Each test's result line ("1/78 Test #4: Name ....   Passed  0.52 sec") as "name status".
   local results=$build_dir/emulated-tests.results
   sed -n 's/^ *[0-9]*\/[0-9]* Test *#[0-9]*: \([^ ]*\) \.*[ *]*\([A-Za-z]*\).*/\1 \2/p' "$log" >"$results"
@@ -211,7 +213,7 @@ emulated_tests() {
       [[ " ${selected[*]} " == *" ${unit:-other} "* ]] && echo "    skipped under emulation: $name: ${entry#*|}"
     done < <(ctest --test-dir "$build_dir" -N -R "${entry%%|*}" | sed -n 's/^ *Test *#[0-9]*: //p')
   done
-  [ -n "$skipped_names" ] && skip_reasons "$build_dir/Testing/Temporary/LastTest.log" "$skipped_names"
+  [ -n "$skipped_names" ] && skip_reasons "$outputs" "$skipped_names"
   [ "$rc" -eq 0 ] || sed -n '/The following tests FAILED/,$p' "$log"
   return "$rc"
 }
