@@ -37,7 +37,9 @@ done
 # Host tools: the cross compiler, the emulator, the root builder, and what the tests and the .deb
 # use on the host (Python for the Modbus peer, dpkg-dev for the package's dependencies).
 host_packages=(crossbuild-essential-arm64 qemu-user-static mmdebstrap cmake ninja-build pkg-config
-  dpkg-dev file python3 python3-pymodbus python3-serial python3-serial-asyncio socat)
+  dpkg-dev file python3 python3-pymodbus python3-serial python3-serial-asyncio socat nodejs)
+# npm comes with some nodejs builds (NodeSource's) and is its own package in Debian's.
+command -v npm >/dev/null 2>&1 || host_packages+=(npm)
 # The arm64 packages rovctl links, plus the test libraries. OpenCV: only the modules the top
 # CMakeLists.txt asks find_package for, read from it so the two lists cannot drift apart; OpenCV's
 # CMake package comes from libopencv-dev, unpacked alone (see opencv_cmake_package).
@@ -122,6 +124,7 @@ make_root() {
 # Tests that cannot run under user-mode emulation, each as "ctest regex|reason".
 emulation_skips=(
   "ThrustersSafe.ExecStopPostDisarmsTheControllerAfterSigkill|rovctl run must arm and thrust within 20 s on a real-time 33 ms tick; emulated, a tick's estimate takes about 0.5 s"
+  "ArdusubPeer.RunOverMavlink|its ArduSub peer times rovctl run's neutral command to two 33 ms ticks after a loss; emulated, a tick's estimate takes about 0.5 s"
 )
 # Not arm64 code, and so not run here (the native build runs them): the include-layering probes
 # (compile checks), the lint and docs checks (scripts over the sources), the water-set scripts
@@ -274,6 +277,11 @@ package() {
 }
 
 install_host_packages
+# The JavaScript test peers (node-mavlink), as deploy/setup.sh installs them for the native build.
+if [ ! -d tests/node_modules/node-mavlink ]; then
+  echo "setup arm64: npm ci in tests/"
+  npm ci --prefix tests --no-audit --no-fund --loglevel=error
+fi
 [ "$stop_after" == host ] && exit 0
 make_root
 [ "$stop_after" == root ] && exit 0
