@@ -5,7 +5,7 @@
 # Usage: bash deploy/setup.sh --arch arm64 [--ci | --build-only] [--target T ...] [extra cmake args...]
 #   (none)         everything: build, the tests unit by unit, `rovctl params`, `rovctl sim --trials 2`
 #                  and `rovctl bench` under qemu, the .deb, its contents and its dependencies
-#   --ci           the part fit for CI: build the estimator's tests only and run them under qemu
+#   --ci           the part fit for CI: cross-compile rovctl and run `rovctl params` under qemu
 #   --build-only   cross-compile only (no emulated tests, bench or .deb)
 #   --target T     build only target T (repeatable; implies --build-only)
 #   --host-only    install the host's packages and stop
@@ -297,10 +297,12 @@ build() {
   echo "setup arm64: built $build_dir ${*:-(everything)}"
 }
 
+emulator=(qemu-aarch64-static -L "$root")
 if [ "$ci" -eq 1 ]; then
-  build estimator_tests
-  file "$build_dir/tests/estimator_tests"
-  emulated_tests estimator
+  build rovctl
+  file "$build_dir/rovctl"
+  echo "setup arm64: rovctl params under qemu-aarch64-static (first lines)"
+  "${emulator[@]}" "$build_dir/rovctl" params | head -3
   exit
 fi
 if [ "$build_only" -eq 1 ]; then
@@ -310,7 +312,6 @@ fi
 
 # The binary and its package first (the tests' binaries take as long again to build), then the
 # tests, then the emulated closed loop.
-emulator=(qemu-aarch64-static -L "$root")
 build rovctl
 file "$build_dir/rovctl"
 echo "setup arm64: rovctl params under qemu-aarch64-static (first lines)"
