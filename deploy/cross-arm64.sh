@@ -302,7 +302,8 @@ if [ "$ci" -eq 1 ]; then
   build rovctl
   file "$build_dir/rovctl"
   echo "setup arm64: rovctl params under qemu-aarch64-static (first lines)"
-  "${emulator[@]}" "$build_dir/rovctl" params | head -3
+  "${emulator[@]}" "$build_dir/rovctl" params >"$build_dir/params.txt"
+  head -3 "$build_dir/params.txt"
   exit
 fi
 if [ "$build_only" -eq 1 ]; then
