@@ -95,6 +95,7 @@ bool DiveRecorder::write(const hal::StereoFrame& frame, std::string& error) {
   row.sequence = frame.sequence;
   row.left_stamp = frame.left_stamp;
   row.right_stamp = frame.right_stamp;
+  row.exposure = frame.exposure;
   row.left_file = std::string("left/") + name;
   row.right_file = std::string("right/") + name;
 

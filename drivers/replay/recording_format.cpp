@@ -31,7 +31,8 @@ bool safe_relative(const std::string& file) {
 
 std::string frames_csv_row(const RecordedFrame& f) {
   return std::to_string(f.sequence) + "," + std::to_string(f.left_stamp.count()) + "," +
-         std::to_string(f.right_stamp.count()) + "," + f.left_file + "," + f.right_file + "\n";
+         std::to_string(f.right_stamp.count()) + "," + f.left_file + "," + f.right_file + "," +
+         std::to_string(f.exposure.count()) + "\n";
 }
 
 bool read_frames_csv(const std::string& folder, std::vector<RecordedFrame>& frames,
@@ -48,6 +49,7 @@ bool read_frames_csv(const std::string& folder, std::vector<RecordedFrame>& fram
   frames.clear();
   std::size_t pos = 0;
   int line_no = 0;
+  std::size_t columns = 6;
   while (pos < text.size()) {
     const std::size_t nl = text.find('\n', pos);
     if (nl == std::string::npos) break;  // unterminated: the recorder died while writing it
@@ -57,8 +59,11 @@ bool read_frames_csv(const std::string& folder, std::vector<RecordedFrame>& fram
     if (!line.empty() && line.back() == '\r') line.pop_back();
     const std::string where = file + ":" + std::to_string(line_no) + ": ";
     if (line_no == 1) {
-      if (line != kFramesCsvHeader) {
-        error = where + "expected the header '" + std::string(kFramesCsvHeader) + "'";
+      if (line == kFramesCsvHeaderWithoutExposure) {
+        columns = 5;
+      } else if (line != kFramesCsvHeader) {
+        error = where + "expected the header '" + std::string(kFramesCsvHeader) + "' (or '" +
+                kFramesCsvHeaderWithoutExposure + "')";
         return false;
       }
       continue;
@@ -67,8 +72,10 @@ bool read_frames_csv(const std::string& folder, std::vector<RecordedFrame>& fram
     std::vector<std::string> fields;
     std::stringstream ls(line);
     for (std::string field; std::getline(ls, field, ',');) fields.push_back(field);
-    if (fields.size() != 5) {
-      error = where + "expected 5 fields, got " + std::to_string(fields.size());
+    // getline drops an empty last field: "...,png," is five fields, and so an error.
+    if (fields.size() != columns) {
+      error = where + "expected " + std::to_string(columns) + " fields, got " +
+              std::to_string(fields.size());
       return false;
     }
     RecordedFrame f;
@@ -86,6 +93,12 @@ bool read_frames_csv(const std::string& folder, std::vector<RecordedFrame>& fram
     f.right_stamp = std::chrono::nanoseconds(right_ns);
     f.left_file = fields[3];
     f.right_file = fields[4];
+    long long exposure_ns = 0;
+    if (columns == 6 && (!parse_integer(fields[5], exposure_ns) || exposure_ns < 0)) {
+      error = where + "exposure_ns: not a non-negative integer: '" + fields[5] + "'";
+      return false;
+    }
+    f.exposure = std::chrono::nanoseconds(exposure_ns);
     if (!safe_relative(f.left_file) || !safe_relative(f.right_file)) {
       error = where + "image file names must be relative paths inside the recording";
       return false;

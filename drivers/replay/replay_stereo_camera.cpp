@@ -126,6 +126,7 @@ bool ReplayStereoCamera::open_folder(const std::string& folder, std::string& err
     Entry e;
     e.left_rel = r.left_stamp - first;
     e.right_rel = r.right_stamp - first;
+    e.exposure = r.exposure;
     e.left_file = (fs::path(folder) / r.left_file).string();
     e.right_file = (fs::path(folder) / r.right_file).string();
     for (const std::string* f : {&e.left_file, &e.right_file}) {
@@ -336,6 +337,7 @@ hal::GrabStatus ReplayStereoCamera::grab(hal::StereoFrame& frame) {
       video_ ? std::chrono::nanoseconds(0) : entries_[i].right_rel - entries_[i].left_rel;
   frame.left_stamp = left_stamp;
   frame.right_stamp = left_stamp + offset;
+  frame.exposure = video_ ? std::chrono::nanoseconds(0) : entries_[i].exposure;
   frame.sequence = g + 1;
   return hal::GrabStatus::ok;
 }

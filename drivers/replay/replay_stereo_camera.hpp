@@ -45,6 +45,7 @@ class ReplayStereoCamera final : public hal::StereoCamera {
     std::chrono::nanoseconds right_rel{0};
     std::string left_file;  // image-sequence source only
     std::string right_file;
+    std::chrono::nanoseconds exposure{0};  // as recorded; 0: not known (and for videos)
   };
   bool open_folder(const std::string& folder, std::string& error);
   bool open_videos(const std::string& left, const std::string& right, std::string& error);

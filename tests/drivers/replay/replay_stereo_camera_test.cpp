@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <opencv2/core.hpp>
@@ -58,6 +59,7 @@ constexpr int kFrames = 5;
 const nanoseconds kFirstStamp = std::chrono::seconds(1234);
 const nanoseconds kPeriod = milliseconds(33);
 const nanoseconds kRightOffset = milliseconds(2);
+const nanoseconds kManualExposure = std::chrono::microseconds(4000);
 
 hal::StereoFrame synthetic_frame(int i) {
   hal::StereoFrame f;
@@ -69,6 +71,8 @@ hal::StereoFrame synthetic_frame(int i) {
   f.left_stamp = kFirstStamp + kPeriod * i;
   f.right_stamp = f.left_stamp + kRightOffset;
   f.sequence = static_cast<std::uint64_t>(40 + i);
+  // A manual exposure read back from the camera, then the camera's auto exposure (not known).
+  f.exposure = i < 3 ? kManualExposure : nanoseconds(0);
   return f;
 }
 
@@ -112,9 +116,9 @@ TEST(DiveRecorder, WritesTheRecordingFormat) {
   std::istringstream lines(csv);
   std::string line;
   std::getline(lines, line);
-  EXPECT_EQ(line, "sequence,left_stamp_ns,right_stamp_ns,left_file,right_file");
+  EXPECT_EQ(line, "sequence,left_stamp_ns,right_stamp_ns,left_file,right_file,exposure_ns");
   std::getline(lines, line);
-  EXPECT_EQ(line, "40,1234000000000,1234002000000,left/000000.png,right/000000.png");
+  EXPECT_EQ(line, "40,1234000000000,1234002000000,left/000000.png,right/000000.png,4000000");
   int rows = 1;
   while (std::getline(lines, line)) ++rows;
   EXPECT_EQ(rows, kFrames);
@@ -135,6 +139,28 @@ TEST(DiveRecorder, NeverOverwritesARecording) {
   EXPECT_NE(error.find("missing_calibration.yaml"), std::string::npos) << error;
 }
 
+TEST(ReplayStereoCamera, ARecordingWithoutTheExposureColumnPlaysWithExposureUnknown) {
+  TempDir dir;
+  const std::string folder = record(dir);
+  // As other tools write it: the five columns before exposure_ns.
+  std::string csv = std::string(kFramesCsvHeaderWithoutExposure) + "\n";
+  for (int i = 0; i < kFrames; ++i) {
+    char row[128];
+    std::snprintf(row, sizeof row, "%d,%d,%d,left/%06d.png,right/%06d.png\n", i, 33 * i, 33 * i, i,
+                  i);
+    csv += row;
+  }
+  { std::ofstream(folder + "/frames.csv", std::ios::trunc) << csv; }
+  FakeClock clock;
+  ReplayStereoCamera camera(replay_params(folder, "tick", false), clock);
+  std::string error;
+  ASSERT_TRUE(camera.open(error)) << error;
+  hal::StereoFrame frame;
+  ASSERT_EQ(camera.grab(frame), hal::GrabStatus::ok) << camera.last_error();
+  EXPECT_FALSE(frame.exposure_known());
+  EXPECT_TRUE(same_image(frame.left_bgr, synthetic_frame(0).left_bgr));
+}
+
 TEST(ReplayStereoCamera, TickModePlaysEveryPairOnceThenEndOfStream) {
   TempDir dir;
   const std::string folder = record(dir);
@@ -152,6 +178,7 @@ TEST(ReplayStereoCamera, TickModePlaysEveryPairOnceThenEndOfStream) {
     EXPECT_EQ(frame.sequence, static_cast<std::uint64_t>(i + 1));
     EXPECT_EQ(frame.left_stamp, clock.now());
     EXPECT_EQ(frame.right_stamp - frame.left_stamp, kRightOffset);
+    EXPECT_EQ(frame.exposure, want.exposure) << "frame " << i;  // what the camera said, or unknown
     clock.advance(milliseconds(1));
   }
   EXPECT_TRUE(clock.sleeps.empty());
@@ -344,6 +371,21 @@ TEST(ReplayStereoCamera, BadInputIsAClearError) {
   }
   EXPECT_NE(open_error(replay_params(folder, "tick", false)).find("frames.csv:2"),
             std::string::npos);
+  {
+    std::ofstream(folder + "/frames.csv", std::ios::trunc)
+        << kFramesCsvHeader << "\n0,12,13,left/000000.png,right/000000.png,4ms\n";
+  }
+  const std::string exposure = open_error(replay_params(folder, "tick", false));
+  EXPECT_NE(exposure.find("frames.csv:2: exposure_ns: not a non-negative integer: '4ms'"),
+            std::string::npos)
+      << exposure;
+  {
+    std::ofstream(folder + "/frames.csv", std::ios::trunc)
+        << kFramesCsvHeader << "\n0,12,13,left/000000.png,right/000000.png\n";
+  }
+  const std::string short_row = open_error(replay_params(folder, "tick", false));
+  EXPECT_NE(short_row.find("frames.csv:2: expected 6 fields, got 5"), std::string::npos)
+      << short_row;
   { std::ofstream(folder + "/frames.csv", std::ios::trunc) << kFramesCsvHeader << "\n"; }
   EXPECT_NE(open_error(replay_params(folder, "tick", false)).find("no frames"), std::string::npos);
 
