@@ -31,7 +31,8 @@ TEST(ValidationSet, SampleLoadsWithEveryCondition) {
   }
   for (const char* c :
        {"clear", "turbid_near", "turbid_far", "side_light", "bubbles", "occlusion", "edge",
-        "noise_jpeg", "distortion", "overexposed", "underexposed", "motion_blur"}) {
+        "noise_jpeg", "distortion", "overexposed", "underexposed", "motion_blur", "noise_yuyv",
+        "noise_mjpg90"}) {
     EXPECT_EQ(conditions.count(c), 1u) << c;
   }
 }
