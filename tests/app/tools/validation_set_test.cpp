@@ -29,10 +29,9 @@ TEST(ValidationSet, SampleLoadsWithEveryCondition) {
     EXPECT_TRUE(fs::is_regular_file(p.right_png)) << p.right_png;
     EXPECT_GT(p.T_cl_marker.translation().z(), 0.2);
   }
-  for (const char* c :
-       {"clear", "turbid_near", "turbid_far", "side_light", "bubbles", "occlusion", "edge",
-        "noise_jpeg", "distortion", "overexposed", "underexposed", "motion_blur", "noise_yuyv",
-        "noise_mjpg90"}) {
+  for (const char* c : {"clear", "turbid_near", "turbid_far", "side_light", "bubbles", "occlusion",
+                        "edge", "noise_jpeg", "distortion", "overexposed", "underexposed",
+                        "motion_blur", "noise_yuyv", "noise_mjpg90"}) {
     EXPECT_EQ(conditions.count(c), 1u) << c;
   }
 }
