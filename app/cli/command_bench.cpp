@@ -257,7 +257,13 @@ JsonWriter& score_fields(JsonWriter& json, const ConditionScore& s, ScoreRow row
   if (whole) {
     json.field("rotation_deg_p95", s.rotation_deg_p95)
         .field("translation_mm_median_all", s.translation_mm_median_all)
-        .field("ms_per_frame_p95", s.ms_per_frame_p95);
+        .field("ms_per_frame_p95", s.ms_per_frame_p95)
+        .field("bounded", s.bounded)
+        .field("bound_held", s.bound_held)
+        .field("rotation_bound_ratio_p99", s.rotation_bound_ratio_p99)
+        .field("rotation_bound_ratio_max", s.rotation_bound_ratio_max)
+        .field("translation_bound_ratio_p99", s.translation_bound_ratio_p99)
+        .field("translation_bound_ratio_max", s.translation_bound_ratio_max);
   }
   return json;
 }
@@ -361,6 +367,16 @@ int bench_set(const AppConfig& config, const hal::StereoRig& rig, const std::str
                   100.0 * s.false_ok / std::max(1, s.pairs), s.partial, reasons,
                   s.translation_mm_median, s.translation_mm_p95, s.rotation_deg_median,
                   s.rotation_deg_p95, s.ms_per_frame_p95);
+    }
+    std::printf(
+        "\nerror / bound over the ok pairs with a bound (held: both errors within it):\n"
+        "%-14s %7s %6s %17s %17s\n",
+        "condition", "bounded", "held", "deg ratio p99/max", "mm ratio p99/max");
+    for (const ConditionScore& s : scores) {
+      std::printf("%-14s %7d %5.0f%% %8.2f/%-8.2f %8.2f/%-8.2f\n", s.condition.c_str(), s.bounded,
+                  100.0 * s.bound_held / std::max(1, s.bounded), s.rotation_bound_ratio_p99,
+                  s.rotation_bound_ratio_max, s.translation_bound_ratio_p99,
+                  s.translation_bound_ratio_max);
     }
     std::printf("\nby the marker's true range from the left camera:\n%-14s %11s %5s %8s %9s\n",
                 "condition", "range m", "pairs", "success", "false-ok");

@@ -51,7 +51,7 @@ ConditionScore summarise(const std::string& condition, const std::vector<PairRes
                          const std::vector<double>& ms) {
   ConditionScore s;
   s.condition = condition;
-  std::vector<double> t_ok, r_ok, t_all;
+  std::vector<double> t_ok, r_ok, t_all, r_ratio, t_ratio;
   for (const PairResult& r : results) {
     ++s.pairs;
     t_all.push_back(r.translation_mm);
@@ -74,6 +74,14 @@ ConditionScore summarise(const std::string& condition, const std::vector<PairRes
     ++s.ok;
     t_ok.push_back(r.translation_mm);
     r_ok.push_back(r.rotation_deg);
+    if (std::isfinite(r.error_bound_deg) && std::isfinite(r.error_bound_mm)) {
+      ++s.bounded;
+      r_ratio.push_back(r.rotation_deg / r.error_bound_deg);
+      t_ratio.push_back(r.translation_mm / r.error_bound_mm);
+      if (r.rotation_deg <= r.error_bound_deg && r.translation_mm <= r.error_bound_mm) {
+        ++s.bound_held;
+      }
+    }
     const bool right = r.translation_mm < kRightTranslationMm && r.rotation_deg < kRightRotationDeg;
     if (right) {
       ++s.success;
@@ -87,6 +95,10 @@ ConditionScore summarise(const std::string& condition, const std::vector<PairRes
   s.rotation_deg_p95 = hal::percentile(r_ok, 0.95);
   s.translation_mm_median_all = hal::percentile(t_all, 0.5);
   s.ms_per_frame_p95 = hal::percentile(ms, 0.95);
+  s.rotation_bound_ratio_p99 = hal::percentile(r_ratio, 0.99);
+  s.rotation_bound_ratio_max = hal::percentile(r_ratio, 1.0);
+  s.translation_bound_ratio_p99 = hal::percentile(t_ratio, 0.99);
+  s.translation_bound_ratio_max = hal::percentile(t_ratio, 1.0);
   return s;
 }
 

@@ -54,6 +54,12 @@ struct ConditionScore {
   // Over every pair, ok or not: how far off the best pose was.
   double translation_mm_median_all = 0.0;
   double ms_per_frame_p95 = 0.0;  // NaN in a range row: the time is the condition's
+  // Over the pairs reported ok with a bound (improved mode gives one): each error against the
+  // bound the estimator gave with it. A true bound keeps every ratio at or below 1; `bound_held`
+  // counts the pairs where both did. The ratios are NaN when no ok pair had a bound.
+  int bounded = 0, bound_held = 0;
+  double rotation_bound_ratio_p99 = 0.0, rotation_bound_ratio_max = 0.0;
+  double translation_bound_ratio_p99 = 0.0, translation_bound_ratio_max = 0.0;
 };
 
 struct PairResult {

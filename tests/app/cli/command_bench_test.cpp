@@ -28,6 +28,10 @@ TEST(CommandBench, SplitsEachConditionByAManifestNumber) {
   EXPECT_EQ(rc, 0);
   const std::size_t by_field = out.find("\"by_field\"");
   ASSERT_NE(by_field, std::string::npos) << out;
+  // Each condition's row says how its ok pairs' errors stood against their bounds.
+  const std::string conditions = out.substr(0, out.find("\"by_range\""));
+  EXPECT_EQ(count_of(conditions, "\"bound_held\""), count_of(conditions, "\"condition\""));
+  EXPECT_NE(conditions.find("\"rotation_bound_ratio_max\""), std::string::npos) << conditions;
   const std::string rows = out.substr(by_field);
   // Only the noisy pairs carry a JPEG quality (the sample's are q45, q62 and q64): one row under 50
   // with no lower edge, one from 60 with no upper edge, no row for the empty band between.

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <set>
 
 #include "app/runtime/app_config.hpp"
@@ -28,9 +29,9 @@ TEST(ValidationSet, SampleLoadsWithEveryCondition) {
     EXPECT_TRUE(fs::is_regular_file(p.right_png)) << p.right_png;
     EXPECT_GT(p.T_cl_marker.translation().z(), 0.2);
   }
-  for (const char* c :
-       {"clear", "turbid_near", "turbid_far", "side_light", "bubbles", "occlusion", "edge",
-        "noise_jpeg", "distortion", "overexposed", "underexposed", "motion_blur"}) {
+  for (const char* c : {"clear", "turbid_near", "turbid_far", "side_light", "bubbles", "occlusion",
+                        "edge", "noise_jpeg", "distortion", "overexposed", "underexposed",
+                        "motion_blur", "noise_yuyv", "noise_mjpg90"}) {
     EXPECT_EQ(conditions.count(c), 1u) << c;
   }
 }
@@ -127,6 +128,40 @@ TEST(ValidationSet, ScoresByRangeSplitEachConditionAtTheEdges) {
   EXPECT_EQ(rows[3].pairs, 1);
   EXPECT_THROW(score_by_range(details, {1.0, 0.5}), std::invalid_argument);
   EXPECT_THROW(score_by_range(details, {0.0}), std::invalid_argument);
+}
+
+TEST(ValidationSet, ScoresSetEachErrorAgainstItsBound) {
+  ValidationPair noise;
+  noise.condition = "noise_jpeg";
+  auto bounded = [&noise](double mm, double deg, double bound_mm, double bound_deg) {
+    PairResult r = result_at(noise, 0.8, true, mm);
+    r.rotation_deg = deg;
+    r.error_bound_mm = bound_mm;
+    r.error_bound_deg = bound_deg;
+    return r;
+  };
+  PairResult paper = result_at(noise, 0.8, true, 1.0);  // paper mode: ok without a bound
+  paper.error_bound_mm = paper.error_bound_deg = std::numeric_limits<double>::quiet_NaN();
+  const std::vector<PairResult> details = {
+      bounded(1.0, 0.5, 4.0, 2.0),         // 0.25, 0.25: held
+      bounded(3.0, 3.0, 6.0, 2.0),         // rotation 1.5 times its bound: not held
+      bounded(4.5, 0.2, 3.0, 1.0),         // translation 1.5 times its bound: not held
+      result_at(noise, 0.8, false, 20.0),  // not ok: no promise to keep
+      paper,
+  };
+  const std::vector<ConditionScore> rows = score_by_range(details, {});
+  ASSERT_EQ(rows.size(), 1u);
+  EXPECT_EQ(rows[0].ok, 4);
+  EXPECT_EQ(rows[0].bounded, 3);
+  EXPECT_EQ(rows[0].bound_held, 1);
+  EXPECT_DOUBLE_EQ(rows[0].rotation_bound_ratio_max, 1.5);
+  EXPECT_DOUBLE_EQ(rows[0].translation_bound_ratio_max, 1.5);
+  EXPECT_GT(rows[0].rotation_bound_ratio_p99, 1.4);
+  EXPECT_LT(rows[0].rotation_bound_ratio_p99, 1.5);
+  const std::vector<ConditionScore> unbounded = score_by_range({paper}, {});
+  ASSERT_EQ(unbounded.size(), 1u);
+  EXPECT_EQ(unbounded[0].bounded, 0);
+  EXPECT_TRUE(std::isnan(unbounded[0].rotation_bound_ratio_max));
 }
 
 TEST(ValidationSet, ScoresByFieldSplitOnlyThePairsThatHaveIt) {

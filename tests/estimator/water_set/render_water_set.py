@@ -47,13 +47,18 @@ PLATE_Z = 0.05
 SEABED_Y = 0.60
 
 CONDITIONS = ["clear", "turbid_near", "turbid_far", "side_light", "bubbles", "occlusion", "edge",
-              "noise_jpeg", "distortion", "overexposed", "underexposed", "motion_blur", "cast"]
+              "noise_jpeg", "distortion", "overexposed", "underexposed", "motion_blur", "cast",
+              "noise_yuyv", "noise_mjpg90"]
 # Rendered only when named (--conditions): not part of the validation set the docs' figures are read on.
 ON_DEMAND_CONDITIONS = ["cast"]
 DEFAULT_CONDITIONS = [c for c in CONDITIONS if c not in ON_DEMAND_CONDITIONS]
 # Conditions that draw their poses (and every other random draw) as another condition does, so their pairs
 # are that condition's pairs in other water: `cast` pair i of seed s is `clear` pair i of seed s.
-POSE_TWIN = {"cast": "clear"}
+POSE_TWIN = {"cast": "clear", "noise_yuyv": "noise_jpeg", "noise_mjpg90": "noise_jpeg"}
+# The shipped camera's streams: noise + JPEG's pairs (poses, light and sensor noise) as a camera that
+# sends YUYV, or MJPG at quality 90, delivers them; noise_jpeg's draws of quality 40-70 are the stress rows.
+CONDITION_STREAMS = {"noise_yuyv": {"stream": "yuyv", "spec": "yuyv"},
+                     "noise_mjpg90": {"stream": "mjpg", "jpeg_quality": 90, "spec": "mjpg:90"}}
 
 # Jerlov (1976) Marine Optics, Table XXVII: downwelling diffuse attenuation Kd (1/m) at 450..650 nm in
 # 25 nm steps. Camera channels are taken as band means: B 450-500, G 525-575, R 600-650 nm.
@@ -985,6 +990,7 @@ CONDITION_BUILDERS = {
     "side_light": cond_side_light, "bubbles": cond_bubbles, "occlusion": cond_occlusion, "edge": cond_edge,
     "noise_jpeg": cond_noise_jpeg, "distortion": cond_distortion, "overexposed": cond_overexposed,
     "underexposed": cond_underexposed, "motion_blur": cond_motion_blur, "cast": cond_cast,
+    "noise_yuyv": cond_noise_jpeg, "noise_mjpg90": cond_noise_jpeg,
 }
 
 
@@ -1004,6 +1010,7 @@ def make_pair(rig, condition, index, seed, out_dir, pose_override=None, stream=N
     """
     rng = pair_rng(seed, condition, index)
     pose, spec, post, extra, notes = CONDITION_BUILDERS[condition](rig, rng, index)
+    stream = CONDITION_STREAMS.get(condition, stream)
     if stream is not None and post.get("noise"):
         post["stream"] = stream["stream"]
         extra["stream"] = stream["stream"]
