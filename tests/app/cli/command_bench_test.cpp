@@ -33,13 +33,19 @@ TEST(CommandBench, SplitsEachConditionByAManifestNumber) {
   EXPECT_EQ(count_of(conditions, "\"bound_held\""), count_of(conditions, "\"condition\""));
   EXPECT_NE(conditions.find("\"rotation_bound_ratio_max\""), std::string::npos) << conditions;
   const std::string rows = out.substr(by_field);
-  // Only the noisy pairs carry a JPEG quality (the sample's are q45, q62 and q64): one row under 50
-  // with no lower edge, one from 60 with no upper edge, no row for the empty band between.
-  EXPECT_EQ(count_of(rows, "\"field\": \"jpeg_quality\""), 2u) << rows;
+  // Only the JPEG pairs carry a quality (noise_jpeg's q45, q62 and q64; noise_mjpg90's q90; not
+  // YUYV's): noise_jpeg has one row under 50 with no lower edge and one from 60 with no upper edge,
+  // no row for the empty band between; noise_mjpg90 one row from 60.
+  EXPECT_EQ(count_of(rows, "\"field\": \"jpeg_quality\""), 3u) << rows;
   EXPECT_EQ(count_of(rows, "\"condition\": \"noise_jpeg\""), 2u) << rows;
+  EXPECT_EQ(count_of(rows, "\"condition\": \"noise_mjpg90\""), 1u) << rows;
+  EXPECT_EQ(count_of(rows, "\"condition\": \"noise_yuyv\""), 0u) << rows;
   EXPECT_EQ(count_of(rows, "\"condition\": \"clear\""), 0u) << rows;
   EXPECT_NE(rows.find("\"from\": null, \"to\": 50, \"pairs\": 1"), std::string::npos) << rows;
-  EXPECT_NE(rows.find("\"from\": 60, \"to\": null, \"pairs\": 2"), std::string::npos) << rows;
+  EXPECT_NE(rows.find("\"condition\": \"noise_jpeg\", \"field\": \"jpeg_quality\", \"from\": 60, "
+                      "\"to\": null, \"pairs\": 2"),
+            std::string::npos)
+      << rows;
 }
 
 template <class Error>
