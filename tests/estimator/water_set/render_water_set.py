@@ -57,8 +57,7 @@ DEFAULT_CONDITIONS = [c for c in CONDITIONS if c not in ON_DEMAND_CONDITIONS]
 POSE_TWIN = {"cast": "clear", "noise_yuyv": "noise_jpeg", "noise_mjpg90": "noise_jpeg"}
 # The shipped camera's streams: noise + JPEG's pairs (poses, light and sensor noise) as a camera that
 # sends YUYV, or MJPG at quality 90, delivers them; noise_jpeg's draws of quality 40-70 are the stress rows.
-CONDITION_STREAMS = {"noise_yuyv": {"stream": "yuyv", "spec": "yuyv"},
-                     "noise_mjpg90": {"stream": "mjpg", "jpeg_quality": 90, "spec": "mjpg:90"}}
+CONDITION_STREAMS = {"noise_yuyv": "yuyv", "noise_mjpg90": "mjpg:90"}  # as --stream reads them
 
 # Jerlov (1976) Marine Optics, Table XXVII: downwelling diffuse attenuation Kd (1/m) at 450..650 nm in
 # 25 nm steps. Camera channels are taken as band means: B 450-500, G 525-575, R 600-650 nm.
@@ -1010,7 +1009,8 @@ def make_pair(rig, condition, index, seed, out_dir, pose_override=None, stream=N
     """
     rng = pair_rng(seed, condition, index)
     pose, spec, post, extra, notes = CONDITION_BUILDERS[condition](rig, rng, index)
-    stream = CONDITION_STREAMS.get(condition, stream)
+    if condition in CONDITION_STREAMS:
+        stream = stream_arg(CONDITION_STREAMS[condition])
     if stream is not None and post.get("noise"):
         post["stream"] = stream["stream"]
         extra["stream"] = stream["stream"]
