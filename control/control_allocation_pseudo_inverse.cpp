@@ -4,6 +4,7 @@
 #include <Eigen/SVD>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 namespace rovctl::control {
@@ -141,6 +142,23 @@ double ControlAllocator::allocate(const Wrench& wrench_body, hal::ThrusterComman
         std::clamp(effectiveness_.command_for_thrust(i, f), -1.0, 1.0);
   }
   return scale;
+}
+
+Wrench ControlAllocator::axis_capacity() const {
+  const std::size_t n = effectiveness_.count();
+  Wrench capacity = Wrench::Zero();
+  for (Eigen::Index axis = 0; axis < 6; ++axis) {
+    double weakest = std::numeric_limits<double>::infinity();
+    for (const double sign : {1.0, -1.0}) {
+      for (std::size_t i = 0; i < n; ++i) {
+        const double per_unit = sign * mix_(static_cast<Eigen::Index>(i), axis);
+        if (std::abs(per_unit) < 1e-12) continue;
+        weakest = std::min(weakest, effectiveness_.limit_n(i, per_unit) / std::abs(per_unit));
+      }
+    }
+    capacity[axis] = std::isfinite(weakest) ? weakest : 0.0;
+  }
+  return capacity;
 }
 
 }  // namespace rovctl::control

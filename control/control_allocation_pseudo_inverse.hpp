@@ -30,6 +30,9 @@ class ControlAllocator {
 
   // The thrusts [N] before saturation (min weighted-norm solution). No allocation.
   ThrustVector thrust_for(const Wrench& wrench_body) const { return mix_ * wrench_body; }
+  // The largest force (N) or moment (N m) the active thrusters can make along each body axis
+  // alone, in the weaker of its two directions. No allocation.
+  Wrench axis_capacity() const;
   // Sets every channel of the layout to neutral.
   void neutral(hal::ThrusterCommand& command) const;
 

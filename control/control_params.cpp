@@ -3,6 +3,21 @@
 
 namespace rovctl::control {
 
+void describe(hal::ParamVisitor& v, DisturbanceParams& p) {
+  v.param("hold_fraction", p.hold_fraction,
+          {"-", 0.1, 1.0,
+           "share of the thrusters' force along each axis the current's estimate may take"});
+  v.param("settle_rate_nps", p.settle_rate_nps,
+          {"N/s", 0.01, 100.0, "the estimate is settled while its horizontal force changes slower"});
+  v.param("settle_s", p.settle_s,
+          {"s", 0.0, 60.0, "... for this long (ALIGN's hold counts only settled frames)"});
+  v.param("rate_cutoff_hz", p.rate_cutoff_hz,
+          {"Hz", 0.01, 15.0, "cut-off of the low-pass on the estimate's rate of change"});
+  v.param("beyond_hold_s", p.beyond_hold_s,
+          {"s", 0.1, 600.0,
+           "at its limit or with the thrusters saturated this long: current beyond hold"});
+}
+
 void describe(hal::ParamVisitor& v, ServoParams& p) {
   v.param("six_dof", p.six_dof,
           "servo all six axes; false servoes x, y, z and yaw and only damps roll and pitch");
@@ -36,6 +51,8 @@ void describe(hal::ParamVisitor& v, ServoParams& p) {
           {"s", 0.01, 5.0, "a longer gap between updates restarts the derivative"});
   v.param("net_buoyancy_n", p.net_buoyancy_n,
           {"N", -100.0, 100.0, "buoyancy minus weight; fed forward as a downward force"});
+  v.section("disturbance", "the integral term as the estimate of the current's push",
+            [&p](hal::ParamVisitor& s) { describe(s, p.disturbance); });
 }
 
 void describe(hal::ParamVisitor& v, AllocationParams& p) {

@@ -11,6 +11,23 @@
 
 namespace rovctl::control {
 
+// The servo's integral term as an estimate of the current's push (DisturbanceEstimate): how much
+// of the thrusters it may take, when it counts as settled, and when the current is beyond hold.
+struct DisturbanceParams {
+  // Share of the thrusters' force (or moment) along each axis the estimate may take; the rest is
+  // left to the servo's P and D terms.
+  double hold_fraction = 0.7;
+  // Settled: the horizontal force, low-passed at rate_cutoff_hz, changes slower than
+  // settle_rate_nps for settle_s. ALIGN's hold counts only settled frames.
+  double settle_rate_nps = 0.5;
+  double settle_s = 1.5;
+  double rate_cutoff_hz = 0.5;
+  // Beyond hold: a horizontal axis at its limit, or the thrusters saturated, for this long.
+  double beyond_hold_s = 4.0;
+};
+
+void describe(hal::ParamVisitor& v, DisturbanceParams& p);
+
 // The PD(+I) visual servo. Linear gains act on the position error in body axes (x fwd, y stbd,
 // z down), angular gains on the rotation error (roll, pitch, yaw about body x, y, z).
 struct ServoParams {
@@ -18,7 +35,8 @@ struct ServoParams {
   // their derivative (damping) term. true: all six axes.
   bool six_dof = false;
   Eigen::Vector3d kp_linear{80.0, 90.0, 90.0};  // N/m
-  Eigen::Vector3d kd_linear{60.0, 60.0, 70.0};  // N s/m
+  // Heave: 70 limit-cycled at 1 Hz (+-0.1 m, +-50 N) holding the stand-off in a 0.25 m/s current.
+  Eigen::Vector3d kd_linear{60.0, 60.0, 40.0};  // N s/m
   Eigen::Vector3d ki_linear{20.0, 30.0, 30.0};  // N/(m s)
   // Yaw: the camera latency, the frame period and the thrusters' lag add up to ~0.15 s, so the
   // yaw loop must cross over near 3 rad/s (kp 8 / kd 3 limit-cycled at +-0.03 rad, 0.8 Hz).
@@ -26,7 +44,7 @@ struct ServoParams {
   Eigen::Vector3d kd_angular{1.0, 1.0, 2.0};  // N m s/rad
   Eigen::Vector3d ki_angular{0.0, 0.0, 0.3};  // N m/(rad s)
   // Anti-windup: the integral term's magnitude per axis never exceeds these.
-  Eigen::Vector3d integral_limit_linear_n{8.0, 8.0, 8.0};
+  Eigen::Vector3d integral_limit_linear_n{60.0, 60.0, 20.0};
   Eigen::Vector3d integral_limit_angular_nm{1.0, 1.0, 1.0};
   // The proportional and integral terms see the error clipped to these norms, which bounds the
   // approach speed (about kp * max / kd) so the estimator can keep the marker tracked.
@@ -45,6 +63,7 @@ struct ServoParams {
   double max_update_gap_s = 0.25;
   // Buoyancy minus weight; the feed-forward pushes down (body +z) by this much.
   double net_buoyancy_n = 2.0;
+  DisturbanceParams disturbance;
 };
 
 void describe(hal::ParamVisitor& v, ServoParams& p);

@@ -150,7 +150,18 @@ void Mission::enter(MissionState to, std::chrono::nanoseconds now, const char* r
   }
 }
 
-void Mission::lost_before_dock(std::chrono::nanoseconds now) {
+bool Mission::beyond_hold(const Sight& s) {
+  if (!s.in.current_beyond_hold) return false;
+  enter(MissionState::failed, s.in.now, "current beyond hold");
+  return true;
+}
+
+void Mission::lost_before_dock(const Sight& s) {
+  const std::chrono::nanoseconds now = s.in.now;
+  if (s.in.disturbance_at_limit) {
+    enter(MissionState::failed, now, "current beyond hold");
+    return;
+  }
   // APPROACH and ALIGN steer to the stand-off, short of the station, so the probe is not where a
   // back-off must pull it from; and backing off blind takes the vehicle beyond the range the
   // marker can be seen at in turbid water: in the sim's murky water (red extinction 1.6 /m) a
@@ -256,8 +267,9 @@ void Mission::from_search(const Sight& s) {
 
 void Mission::from_approach(const Sight& s) {
   const Errors& err = s.err;
+  if (beyond_hold(s)) return;
   if (s.lost) {
-    lost_before_dock(s.in.now);
+    lost_before_dock(s);
   } else if (s.t_state > p_.approach_timeout_s) {
     enter(MissionState::abort, s.in.now, "approach timed out");
   } else if (s.seen && err.lateral_m <= p_.approach_lateral_m &&
@@ -288,20 +300,25 @@ void Mission::from_align(const Sight& s) {
              std::abs(align_avg_.z()) <= p_.align_axial_m &&
              std::abs(align_avg_.w()) <= p_.align_yaw_rad;
   }
-  hold_frames_ = within ? hold_frames_ + 1 : 0;
+  // Judged only once the current's estimate has settled: an error within the limits while it is
+  // still learning the push is a vehicle passing through, not one held there.
+  hold_frames_ = within && s.in.disturbance_settled ? hold_frames_ + 1 : 0;
+  if (beyond_hold(s)) return;
   if (s.lost) {
-    lost_before_dock(s.in.now);
+    lost_before_dock(s);
   } else if (hold_frames_ >= p_.align_hold_frames) {
     dock_start_back_m_ = p_.standoff_m;
     enter(MissionState::dock, s.in.now, "aligned");
   } else if (s.t_state > p_.align_timeout_s) {
-    enter(MissionState::abort, s.in.now, "align timed out");
+    enter(MissionState::abort, s.in.now,
+          s.in.disturbance_settled ? "align timed out" : "align timed out: current not settled");
   }
 }
 
 void Mission::from_dock(const Sight& s) {
   const Errors& err = s.err;
   const std::chrono::nanoseconds now = s.in.now;
+  if (beyond_hold(s)) return;
   const bool vision_contact = p_.contact_from_vision && s.seen_dock &&
                               err.axial_m >= p_.vision_contact_depth_m &&
                               err.lateral_m <= p_.dock_abort_lateral_m;
@@ -505,7 +522,7 @@ void Mission::from_charging(const Sight& s) {
       held_for(in.hold_force_n > r.overload_force_n, in.now, overload_since_, r.overload_s);
   const bool swung = held_for(seen_dock && std::abs(err.yaw_rad) > r.overload_yaw_rad, in.now,
                               swing_since_, r.overload_yaw_s);
-  const bool overload = pushed || swung;
+  const bool overload = pushed || swung || in.current_beyond_hold;
   if (in.undock_requested) {
     start_undock(in.now, "operator command");
   } else if (overload) {

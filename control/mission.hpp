@@ -52,6 +52,11 @@ struct MissionInput {
   double soc_fraction = 0.0;
   double hold_force_n = 0.0;
   bool undock_requested = false;
+  // The servo's estimate of the current's push (DisturbanceEstimate): settled (ALIGN's hold
+  // counts only settled frames), at its limit now, and beyond what the thrusters may hold.
+  bool disturbance_settled = true;
+  bool disturbance_at_limit = false;
+  bool current_beyond_hold = false;
 };
 
 // The application's contract: thrusters_enabled false -> neutral. Else if servo_active:
@@ -187,8 +192,12 @@ class Mission {
   void dock_outputs(const Sight& s, MissionOutput& out);
   void undock_outputs(const Sight& s, MissionOutput& out) const;
   void enter(MissionState to, std::chrono::nanoseconds now, const char* reason);
-  // APPROACH or ALIGN lost the marker: an abort that searches at once, without backing off.
-  void lost_before_dock(std::chrono::nanoseconds now);
+  // APPROACH or ALIGN lost the marker: an abort that searches at once, without backing off;
+  // lost while the current's estimate was at its limit, the current swept it away: FAILED.
+  void lost_before_dock(const Sight& s);
+  // The current pushes harder than the thrusters may hold: no retry can succeed, so FAILED
+  // (thrusters neutral) rather than an abort that would search and approach again.
+  bool beyond_hold(const Sight& s);
   void start_undock(std::chrono::nanoseconds now, const char* reason);
   void push_event(const MissionEvent& e);
 

@@ -210,5 +210,27 @@ TEST(AllocatorWithoutAThruster, TwoHorizontalThrustersLostLeaveTheServoAxesUncon
   EXPECT_FALSE(allocator.servo_axes_controllable());
 }
 
+TEST(ControlAllocator, AxisCapacityIsTheWeakerDirectionsLimit) {
+  ControlAllocator alloc(planar_layout(), linear());
+  const Wrench capacity = alloc.axis_capacity();
+  // Surge: 5 N a side each way, the reverse limit the weaker: 10 N. Yaw: one thruster forward,
+  // one in reverse at 0.5 m: the reverse one at 5 N makes 2 x 5 x 0.5 = 5 N m.
+  EXPECT_NEAR(capacity[0], 10.0, 1e-9);
+  EXPECT_NEAR(capacity[5], 5.0, 1e-9);
+  // Sway: no thruster acts along it.
+  EXPECT_EQ(capacity[1], 0.0);
+  // What allocate() gives at that capacity is exactly the limit, no more.
+  Wrench w = Wrench::Zero();
+  w[0] = -capacity[0];
+  hal::ThrusterCommand cmd;
+  EXPECT_NEAR(alloc.allocate(w, cmd), 1.0, 1e-9);
+  w[0] *= 1.1;
+  EXPECT_LT(alloc.allocate(w, cmd), 1.0);
+  // One thruster lost: less is left.
+  alloc.remove_thruster(0);
+  EXPECT_GT(alloc.axis_capacity()[0], 0.0);
+  EXPECT_LT(alloc.axis_capacity()[0], 10.0 - 1e-6);
+}
+
 }  // namespace
 }  // namespace rovctl::control

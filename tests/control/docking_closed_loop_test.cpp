@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <random>
+#include <string>
 
 #include "control/control_allocation_pseudo_inverse.hpp"
 #include "control/mission.hpp"
@@ -28,6 +29,10 @@ struct TrialResult {
   double yaw_deg = 180.0;
   double time_s = 0.0;
   int aborts = 0;
+  MissionState final_state = MissionState::search;
+  std::string final_reason;  // of the last transition
+  double end_s = 0.0;        // when the mission finished (docked or failed)
+  bool thrust_after_end = false;
 };
 
 // Where a trial starts, relative to the docked pose: back along the docking axis, off it to
@@ -39,7 +44,8 @@ struct TrialStart {
 };
 
 TrialResult run_trial(std::uint64_t seed, double current_mps, const TrialStart* start = nullptr,
-                      double view_bearing_rad = MissionParams{}.approach_view_bearing_rad) {
+                      double view_bearing_rad = MissionParams{}.approach_view_bearing_rad,
+                      const Eigen::Vector3d* current_world_mps = nullptr) {
   std::mt19937_64 rng(seed);
   std::uniform_real_distribution<double> uni(-1.0, 1.0);
   std::normal_distribution<double> gauss(0.0, 1.0);
@@ -65,6 +71,7 @@ TrialResult run_trial(std::uint64_t seed, double current_mps, const TrialStart* 
   mission_params.approach_view_bearing_rad = view_bearing_rad;
   const ControlAllocator allocator(geometry.thrusters, control.allocation);
   PdVisualServo servo(control.servo, T_body_cl);
+  servo.set_capacity(allocator.axis_capacity());
   Mission mission(mission_params, T_body_cl, docked, geometry.probe_tip_body_m);
 
   // Station: marker 2 m deep, its docking axis pointing north.
@@ -88,8 +95,10 @@ TrialResult run_trial(std::uint64_t seed, double current_mps, const TrialStart* 
         R * Eigen::AngleAxisd(start->heading_rad, Eigen::Vector3d::UnitZ()).toRotationMatrix());
   }
   const double heading = M_PI * uni(rng);
-  const Eigen::Vector3d current(current_mps * std::cos(heading), current_mps * std::sin(heading),
-                                0.0);
+  const Eigen::Vector3d current =
+      current_world_mps != nullptr
+          ? *current_world_mps
+          : Eigen::Vector3d(current_mps * std::cos(heading), current_mps * std::sin(heading), 0.0);
 
   const Eigen::Vector3d socket = station.socket_marker_m;
   const double dt_control = 0.033;
@@ -135,14 +144,20 @@ TrialResult run_trial(std::uint64_t seed, double current_mps, const TrialStart* 
     in.fitness = in_view ? 0.9 : 0.1;
     in.T_cl_marker = T_cl_marker;
     in.contact = contact;
+    in.disturbance_settled = servo.disturbance().settled();
+    in.disturbance_at_limit = servo.disturbance().at_limit();
+    in.current_beyond_hold = servo.disturbance().beyond_hold();
     const MissionOutput out = mission.update(in);
-    if (trace) {
-      MissionEvent e;
-      while (mission.pop_event(e)) {
+    MissionEvent e;
+    while (mission.pop_event(e)) {
+      r.final_reason = e.reason;
+      if (trace) {
         std::printf("  %6.2f s %s -> %s (%s) lat %.3f ax %.3f yaw %.3f tip %.3f %.3f %.3f\n", t,
                     to_string(e.from), to_string(e.to), e.reason, out.lateral_error_m,
                     out.axial_error_m, out.yaw_error_rad, tip.x(), tip.y(), tip.z());
       }
+    }
+    if (trace) {
       if (tick % 5 == 0) {
         const Eigen::Vector3d rpy = s.q_world_body.toRotationMatrix().eulerAngles(2, 1, 0);
         std::printf(
@@ -152,7 +167,11 @@ TrialResult run_trial(std::uint64_t seed, double current_mps, const TrialStart* 
             out.yaw_error_rad, p.x(), p.y(), p.z(), s.position_world_m.z(), rpy[0], rpy[1], rpy[2]);
       }
     }
-    if (out.state == MissionState::docked || out.state == MissionState::failed) break;
+    if (out.state == MissionState::docked || out.state == MissionState::failed) {
+      r.end_s = t;
+      r.thrust_after_end = out.thrusters_enabled;
+      break;
+    }
 
     Wrench w = servo.hold_wrench_body();
     if (out.servo_active) {
@@ -164,7 +183,13 @@ TrialResult run_trial(std::uint64_t seed, double current_mps, const TrialStart* 
     }
     hal::ThrusterCommand cmd;
     if (out.thrusters_enabled) {
-      servo.set_allocation_fraction(allocator.allocate(w, cmd));
+      const double fraction = allocator.allocate(w, cmd);
+      if (trace && tick % 15 == 0)
+        std::printf("  dist %.1f %.1f ratio %.2f lim %d sat %.2f w %.1f %.1f\n",
+                    servo.disturbance().wrench_body()[0], servo.disturbance().wrench_body()[1],
+                    servo.disturbance().hold_ratio(), servo.disturbance().at_limit(), fraction,
+                    w[0], w[1]);
+      servo.set_allocation_fraction(fraction);
     } else {
       allocator.neutral(cmd);
     }
@@ -178,6 +203,7 @@ TrialResult run_trial(std::uint64_t seed, double current_mps, const TrialStart* 
   }
   r.docked = mission.state() == MissionState::docked;
   r.aborts = mission.aborts();
+  r.final_state = mission.state();
   return r;
 }
 
@@ -222,6 +248,22 @@ TEST(DockingClosedLoop, KeepsTheMarkerInViewFromFarOffTheAxis) {
     EXPECT_TRUE(kept.docked) << "seed " << seed;
     EXPECT_EQ(kept.aborts, 0) << "seed " << seed;
     EXPECT_GE(turned.aborts, 1) << "seed " << seed;
+  }
+}
+
+// A current the thrusters cannot hold (0.8 m/s across the docking axis; the BlueROV2 Heavy holds
+// about 0.6 m/s sideways): the mission ends FAILED "current beyond hold" in bounded time, not in
+// retries until the mission timer, and leaves the thrusters neutral.
+TEST(DockingClosedLoop, ACurrentBeyondTheThrustersEndsTheMissionAsBeyondHold) {
+  const Eigen::Vector3d across(0.0, 0.8, 0.0);  // the marker's axis points north: this is east
+  for (std::uint64_t seed : {1u, 2u, 3u}) {
+    const TrialResult r = run_trial(seed, 0.0, nullptr, MissionParams{}.approach_view_bearing_rad,
+                                    &across);
+    EXPECT_EQ(r.final_state, MissionState::failed) << "seed " << seed;
+    EXPECT_EQ(r.final_reason, "current beyond hold") << "seed " << seed;
+    EXPECT_LT(r.end_s, 40.0) << "seed " << seed;
+    EXPECT_FALSE(r.thrust_after_end) << "seed " << seed;
+    EXPECT_EQ(r.aborts, 0) << "seed " << seed;
   }
 }
 

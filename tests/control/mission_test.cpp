@@ -45,8 +45,15 @@ class MissionTest : public ::testing::Test {
     in.T_cl_marker = T;
     in.contact = contact;
     in.attitude_aided = attitude_aided;
+    in.disturbance_settled = settled;
+    in.disturbance_at_limit = at_limit;
+    in.current_beyond_hold = beyond_hold;
     return m.update(in);
   }
+  // The servo's estimate of the current, as the next ticks report it.
+  bool settled = true;
+  bool at_limit = false;
+  bool beyond_hold = false;
   bool attitude_aided = false;  // the next ticks' partial views have the attitude sensor's rotation
   MissionOutput blind(Mission& m) { return tick(m, false, Eigen::Isometry3d::Identity()); }
   static std::vector<std::string> drain(Mission& m) {
@@ -503,6 +510,62 @@ TEST_F(MissionTest, StandOffLiesBackAlongTheDockingAxis) {
   // Docked pose: the marker's docking axis is the camera's optical axis.
   EXPECT_NEAR((m.standoff_T_cl_marker().translation() - docked.translation()).z(),
               params.standoff_m, 1e-9);
+}
+
+TEST_F(MissionTest, AlignCountsOnlyOnceTheCurrentsEstimateHasSettled) {
+  const double stand = params.standoff_m;
+  Mission m = make();
+  to_approach(m);
+  tick(m, true, seen_at({stand, 0, 0}));
+  ASSERT_EQ(m.state(), MissionState::align);
+  settled = false;
+  for (int k = 0; k < 3 * params.align_hold_frames; ++k) tick(m, true, seen_at({stand, 0, 0}));
+  EXPECT_EQ(m.state(), MissionState::align) << "aligned while the estimate was still learning";
+  settled = true;
+  for (int k = 0; k < params.align_hold_frames - 1; ++k) tick(m, true, seen_at({stand, 0, 0}));
+  EXPECT_EQ(m.state(), MissionState::align);
+  tick(m, true, seen_at({stand, 0, 0}));
+  EXPECT_EQ(m.state(), MissionState::dock);
+  // Never settled: the timeout says so.
+  Mission n = make();
+  to_approach(n);
+  tick(n, true, seen_at({stand, 0, 0}));
+  settled = false;
+  const int timeout_ticks = static_cast<int>(params.align_timeout_s / 0.033) + 2;
+  for (int k = 0; k < timeout_ticks && n.state() == MissionState::align; ++k)
+    tick(n, true, seen_at({stand, 0, 0}));
+  EXPECT_EQ(n.state(), MissionState::abort);
+  EXPECT_EQ(drain(n).back(), "align>abort:align timed out: current not settled");
+}
+
+TEST_F(MissionTest, ACurrentBeyondHoldFailsTheMissionWithoutRetrying) {
+  for (const MissionState where : {MissionState::approach, MissionState::align,
+                                   MissionState::dock}) {
+    Mission m = make();
+    if (where == MissionState::dock) {
+      to_dock(m);
+    } else {
+      to_approach(m);
+      if (where == MissionState::align) tick(m, true, seen_at({params.standoff_m, 0, 0}));
+    }
+    ASSERT_EQ(m.state(), where);
+    beyond_hold = true;
+    const MissionOutput out = tick(m, true, seen_at({params.standoff_m, 0.02, 0}));
+    beyond_hold = false;
+    EXPECT_EQ(out.state, MissionState::failed) << to_string(where);
+    EXPECT_FALSE(out.thrusters_enabled);
+    EXPECT_TRUE(m.finished());
+    EXPECT_EQ(m.aborts(), 0);
+    EXPECT_EQ(drain(m).back(), std::string(to_string(where)) + ">failed:current beyond hold");
+  }
+  // The marker swept out of view while the estimate was at its limit: the same verdict, at once.
+  Mission m = make();
+  to_approach(m);
+  at_limit = true;
+  for (int k = 0; k < params.lost_frames; ++k) blind(m);
+  at_limit = false;
+  EXPECT_EQ(m.state(), MissionState::failed);
+  EXPECT_EQ(drain(m).back(), "approach>failed:current beyond hold");
 }
 
 }  // namespace

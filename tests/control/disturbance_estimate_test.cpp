@@ -1,0 +1,121 @@
+// DisturbanceEstimate: integration and its clamp (configured and the thrusters' share), carried
+// round as the body turns, held axes, frozen while saturated, settled, beyond hold.
+#include "control/disturbance_estimate.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+namespace rovctl::control {
+namespace {
+
+using Vector6d = DisturbanceEstimate::Vector6d;
+
+Vector6d gains() { return (Vector6d() << 10.0, 10.0, 10.0, 0.0, 0.0, 0.3).finished(); }
+Vector6d limits() { return (Vector6d() << 50.0, 50.0, 20.0, 1.0, 1.0, 1.0).finished(); }
+
+Vector6d along(int axis, double value) {
+  Vector6d e = Vector6d::Zero();
+  e[axis] = value;
+  return e;
+}
+
+Eigen::Matrix3d yaw(double rad) {
+  return Eigen::AngleAxisd(rad, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+}
+
+TEST(DisturbanceEstimate, IntegratesTheErrorWithinTheThrustersShare) {
+  DisturbanceParams p;
+  p.hold_fraction = 0.5;
+  DisturbanceEstimate d(gains(), limits(), p);
+  for (int k = 0; k < 10; ++k) d.integrate(along(1, 0.1), 0.1, false);  // 1 s at 0.1 m
+  EXPECT_NEAR(d.wrench_body()[1], 10.0 * 0.1 * 1.0, 1e-9);
+  EXPECT_EQ(d.wrench_body()[3], 0.0);  // no gain, no estimate
+  for (int k = 0; k < 1000; ++k) d.integrate(along(1, 0.1), 0.1, false);
+  EXPECT_NEAR(d.wrench_body()[1], 50.0, 1e-9);  // the configured limit
+  // The thrusters make 40 N along y: half of it is the estimate's.
+  Vector6d capacity = Vector6d::Constant(100.0);
+  capacity[1] = 40.0;
+  d.set_capacity(capacity);
+  EXPECT_NEAR(d.wrench_body()[1], 20.0, 1e-9);
+  EXPECT_TRUE(d.at_limit());
+  d.set_axis(1, -100.0);
+  EXPECT_NEAR(d.wrench_body()[1], -20.0, 1e-9);
+}
+
+TEST(DisturbanceEstimate, TurnsBackAsTheBodyTurns) {
+  DisturbanceEstimate d(gains(), limits(), DisturbanceParams{});
+  d.set_axis(0, 6.0);  // pushing forward against a current from ahead
+  // The body turns 90 deg to starboard: the current now comes from port, the push is to port
+  // (body -y) in the new body frame.
+  d.turn(yaw(M_PI / 2.0).transpose());
+  EXPECT_NEAR(d.wrench_body()[0], 0.0, 1e-9);
+  EXPECT_NEAR(d.wrench_body()[1], -6.0, 1e-9);
+  // A held axis keeps its body value.
+  d.set_axis(0, 3.0);
+  d.hold_axis(0, true);
+  d.turn(yaw(0.3));
+  EXPECT_NEAR(d.wrench_body()[0], 3.0, 1e-12);
+  d.integrate(along(0, 1.0), 0.1, false);
+  EXPECT_NEAR(d.wrench_body()[0], 3.0, 1e-12);
+  d.reset();
+  EXPECT_TRUE(d.wrench_body().isZero());
+  d.integrate(along(0, 1.0), 0.1, false);  // released by reset()
+  EXPECT_GT(d.wrench_body()[0], 0.0);
+}
+
+TEST(DisturbanceEstimate, OnlyShrinksWhileTheThrustersSaturate) {
+  DisturbanceEstimate d(gains(), limits(), DisturbanceParams{});
+  d.set_axis(1, 5.0);
+  d.integrate(along(1, 0.1), 0.1, true);
+  EXPECT_NEAR(d.wrench_body()[1], 5.0, 1e-12);
+  d.integrate(along(1, -0.1), 0.1, true);
+  EXPECT_NEAR(d.wrench_body()[1], 4.9, 1e-12);
+}
+
+TEST(DisturbanceEstimate, SettlesOnceItStopsChanging) {
+  DisturbanceParams p;
+  p.settle_rate_nps = 0.5;
+  p.settle_s = 1.0;
+  DisturbanceEstimate d(gains(), limits(), p);
+  // Learning a 0.1 m offset: 1 N/s, not settled.
+  for (int k = 0; k < 60; ++k) d.integrate(along(1, 0.1), 1.0 / 30.0, false);
+  EXPECT_FALSE(d.settled());
+  EXPECT_GT(d.rate_nps(), 0.5);
+  // The error gone: the rate decays under the threshold, then a second passes.
+  int ticks_to_settle = 0;
+  while (!d.settled() && ticks_to_settle < 300) {
+    d.integrate(Vector6d::Zero(), 1.0 / 30.0, false);
+    ++ticks_to_settle;
+  }
+  EXPECT_TRUE(d.settled());
+  EXPECT_GT(ticks_to_settle, 30);   // at least settle_s
+  EXPECT_LT(ticks_to_settle, 150);  // and not much more than the low-pass takes
+  d.integrate(along(0, 2.0), 1.0 / 30.0, false);  // a jump in the estimate unsettles it
+  EXPECT_FALSE(d.settled());
+}
+
+TEST(DisturbanceEstimate, BeyondHoldAfterItsTimeAtTheLimit) {
+  DisturbanceParams p;
+  p.beyond_hold_s = 2.0;
+  DisturbanceEstimate d(gains(), limits(), p);
+  d.set_axis(1, 50.0);
+  for (int k = 0; k < 59; ++k) d.integrate(along(1, 0.1), 1.0 / 30.0, false);
+  EXPECT_TRUE(d.at_limit());
+  EXPECT_FALSE(d.beyond_hold());
+  d.integrate(along(1, 0.1), 1.0 / 30.0, false);
+  d.integrate(along(1, 0.1), 1.0 / 30.0, false);
+  EXPECT_TRUE(d.beyond_hold());
+  EXPECT_NEAR(d.hold_ratio(), 1.0, 1e-9);
+  // Back off the limit: no longer.
+  d.integrate(along(1, -10.0), 1.0 / 30.0, false);
+  EXPECT_FALSE(d.at_limit());
+  EXPECT_FALSE(d.beyond_hold());
+  // Saturated thrusters count too, the estimate anywhere.
+  d.set_axis(1, 1.0);
+  for (int k = 0; k < 61; ++k) d.integrate(Vector6d::Zero(), 1.0 / 30.0, true);
+  EXPECT_TRUE(d.beyond_hold());
+}
+
+}  // namespace
+}  // namespace rovctl::control
