@@ -7,8 +7,9 @@ void describe(hal::ParamVisitor& v, DisturbanceParams& p) {
   v.param("hold_fraction", p.hold_fraction,
           {"-", 0.1, 1.0,
            "share of the thrusters' force along each axis the current's estimate may take"});
-  v.param("settle_rate_nps", p.settle_rate_nps,
-          {"N/s", 0.01, 100.0, "the estimate is settled while its horizontal force changes slower"});
+  v.param(
+      "settle_rate_nps", p.settle_rate_nps,
+      {"N/s", 0.01, 100.0, "the estimate is settled while its horizontal force changes slower"});
   v.param("settle_s", p.settle_s,
           {"s", 0.0, 60.0, "... for this long (ALIGN's hold counts only settled frames)"});
   v.param("rate_cutoff_hz", p.rate_cutoff_hz,

@@ -60,14 +60,16 @@ struct MissionInput {
 };
 
 // The application's contract: thrusters_enabled false -> neutral. Else if servo_active:
-// servo_restart -> PdVisualServo::reset(), then the wrench is the servo's, aimed at
+// servo_restart -> PdVisualServo::restart(), then the wrench is the servo's, aimed at
 // T_cl_marker_desired. Else if use_override: wrench_override_body plus the servo's
 // hold_wrench_body() (feed-forward and integral: the trim against buoyancy and current).
 // The servo need not be reset after a brief loss (it restarts its derivative after a gap).
 struct MissionOutput {
   MissionState state = MissionState::search;
   bool servo_active = false;
-  bool servo_restart = false;  // the servo starts afresh this tick (integral and derivative)
+  // The servo takes over this tick (PdVisualServo::restart: the derivative afresh, the current's
+  // estimate kept).
+  bool servo_restart = false;
   Eigen::Isometry3d T_cl_marker_desired = Eigen::Isometry3d::Identity();
   Wrench wrench_override_body = Wrench::Zero();
   bool use_override = false;

@@ -90,6 +90,13 @@ PdVisualServo::PdVisualServo(const ServoParams& params, const Eigen::Isometry3d&
   feedforward_[2] = p_.net_buoyancy_n;  // body z is down: a buoyant vehicle needs a push down
 }
 
+void PdVisualServo::restart() {
+  rate_.reset();
+  error_.setZero();
+  saturated_ = false;
+  for (int i = 0; i < 6; ++i) disturbance_.hold_axis(i, false);
+}
+
 void PdVisualServo::reset() {
   rate_.reset();
   disturbance_.reset();
@@ -98,7 +105,9 @@ void PdVisualServo::reset() {
   have_last_rotation_ = false;
 }
 
-void PdVisualServo::set_integral_term(int axis, double value) { disturbance_.set_axis(axis, value); }
+void PdVisualServo::set_integral_term(int axis, double value) {
+  disturbance_.set_axis(axis, value);
+}
 
 void PdVisualServo::hold_integral(int axis, bool hold) { disturbance_.hold_axis(axis, hold); }
 
@@ -156,8 +165,8 @@ Wrench PdVisualServo::update(const Eigen::Isometry3d& T_cl_marker_measured,
     disturbance_.integrate(integrand, dt_s, saturated_);
   }
 
-  return kp_.cwiseProduct(e_clipped) + disturbance_.wrench_body() +
-         kd_.cwiseProduct(e_rate) + feedforward_;
+  return kp_.cwiseProduct(e_clipped) + disturbance_.wrench_body() + kd_.cwiseProduct(e_rate) +
+         feedforward_;
 }
 
 }  // namespace rovctl::control

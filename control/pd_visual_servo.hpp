@@ -55,6 +55,10 @@ class PdVisualServo {
 
   // Clears the integral and the derivative; call when the servo (re)starts.
   void reset();
+  // The servo takes over again after SEARCH or ABORT: the derivative starts afresh, but the
+  // current's estimate is kept (the water has not changed; the station's rotation at the next
+  // update turns it by however far the body turned meanwhile). Held axes are released.
+  void restart();
 
   // One axis of the integral term (0-5: x, y, z, roll, pitch, yaw; N or N m): set it (clamped to
   // its limit), or hold it where it is (not integrated) until released. reset() releases.

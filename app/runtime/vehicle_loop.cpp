@@ -354,7 +354,7 @@ void VehicleLoop::servo_wrench(TickState& t) {
     return;
   }
   if (!out.thrusters_enabled) return;
-  if (out.servo_active && out.servo_restart) servo_.reset();
+  if (out.servo_active && out.servo_restart) servo_.restart();
   if (out.keep_axial_trim) axial_trim_n_ = servo_.integral_term()[0];
   if (out.restore_axial_trim) servo_.set_integral_term(0, axial_trim_n_);
   servo_.hold_integral(0, out.hold_axial_trim);

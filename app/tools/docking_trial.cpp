@@ -44,9 +44,9 @@ void score_current_push(const hal::mock::WorldTruth& truth,
   const Eigen::Vector3d v_c = truth.T_world_body.linear().transpose() * truth.current_world_mps;
   for (int i = 0; i < 2; ++i) {
     // Fossen's derivatives are negative: the water moving at v_c past a still hull drags it along.
-    r.push_truth_n[i] = -(dynamics.damping_linear[i] +
-                          dynamics.damping_quadratic_linear[i] * std::abs(v_c[i])) *
-                        v_c[i];
+    r.push_truth_n[i] =
+        -(dynamics.damping_linear[i] + dynamics.damping_quadratic_linear[i] * std::abs(v_c[i])) *
+        v_c[i];
   }
 }
 

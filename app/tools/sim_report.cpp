@@ -268,8 +268,9 @@ void plot_trial(const TrialResult& trial, const std::string& png_path) {
                             "[mm] / [deg]");
   p3.line("x fwd [mm]", t, perr[0]).line("y stbd [mm]", t, perr[1]).line("z down [mm]", t, perr[2]);
   p3.line("yaw [deg]", t, perr[3]);
-  auto& p3b = plot.add_panel("The water's push on the vehicle (body): the servo's estimate vs truth",
-                             "time [s]", "force [N]");
+  auto& p3b =
+      plot.add_panel("The water's push on the vehicle (body): the servo's estimate vs truth",
+                     "time [s]", "force [N]");
   p3b.line("estimate x fwd", t, push_est[0]).line("truth x fwd (at rest)", t, push_truth[0]);
   p3b.line("estimate y stbd", t, push_est[1]).line("truth y stbd (at rest)", t, push_truth[1]);
   auto& p4 = plot.add_panel("RM-GA fitness of the best individual", "time [s]", "fitness");

@@ -89,8 +89,8 @@ TEST(DisturbanceEstimate, SettlesOnceItStopsChanging) {
     ++ticks_to_settle;
   }
   EXPECT_TRUE(d.settled());
-  EXPECT_GT(ticks_to_settle, 30);   // at least settle_s
-  EXPECT_LT(ticks_to_settle, 150);  // and not much more than the low-pass takes
+  EXPECT_GT(ticks_to_settle, 30);                 // at least settle_s
+  EXPECT_LT(ticks_to_settle, 150);                // and not much more than the low-pass takes
   d.integrate(along(0, 2.0), 1.0 / 30.0, false);  // a jump in the estimate unsettles it
   EXPECT_FALSE(d.settled());
 }

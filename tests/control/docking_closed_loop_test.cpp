@@ -175,7 +175,7 @@ TrialResult run_trial(std::uint64_t seed, double current_mps, const TrialStart* 
 
     Wrench w = servo.hold_wrench_body();
     if (out.servo_active) {
-      if (out.servo_restart) servo.reset();
+      if (out.servo_restart) servo.restart();
       servo.keep_in_view(out.max_bearing_rad);
       w = servo.update(T_cl_marker, out.T_cl_marker_desired, 33ms);
     } else if (out.use_override) {
@@ -257,8 +257,8 @@ TEST(DockingClosedLoop, KeepsTheMarkerInViewFromFarOffTheAxis) {
 TEST(DockingClosedLoop, ACurrentBeyondTheThrustersEndsTheMissionAsBeyondHold) {
   const Eigen::Vector3d across(0.0, 0.8, 0.0);  // the marker's axis points north: this is east
   for (std::uint64_t seed : {1u, 2u, 3u}) {
-    const TrialResult r = run_trial(seed, 0.0, nullptr, MissionParams{}.approach_view_bearing_rad,
-                                    &across);
+    const TrialResult r =
+        run_trial(seed, 0.0, nullptr, MissionParams{}.approach_view_bearing_rad, &across);
     EXPECT_EQ(r.final_state, MissionState::failed) << "seed " << seed;
     EXPECT_EQ(r.final_reason, "current beyond hold") << "seed " << seed;
     EXPECT_LT(r.end_s, 40.0) << "seed " << seed;

@@ -539,8 +539,8 @@ TEST_F(MissionTest, AlignCountsOnlyOnceTheCurrentsEstimateHasSettled) {
 }
 
 TEST_F(MissionTest, ACurrentBeyondHoldFailsTheMissionWithoutRetrying) {
-  for (const MissionState where : {MissionState::approach, MissionState::align,
-                                   MissionState::dock}) {
+  for (const MissionState where :
+       {MissionState::approach, MissionState::align, MissionState::dock}) {
     Mission m = make();
     if (where == MissionState::dock) {
       to_dock(m);

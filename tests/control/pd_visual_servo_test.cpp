@@ -328,5 +328,25 @@ TEST_F(PdVisualServoTest, ALongApproachDoesNotWindTheIntegralUp) {
   EXPECT_NEAR(servo.integral_term()[0] - before, 20.0 * 0.05 * 60 * 0.033, 0.2);
 }
 
+TEST_F(PdVisualServoTest, ARestartKeepsTheCurrentsEstimateAResetClearsIt) {
+  ServoParams p = params();
+  p.kp_linear.setZero();
+  p.kd_linear.setZero();
+  p.ki_linear = {10.0, 10.0, 10.0};
+  PdVisualServo servo(p, T_body_cl);
+  const Eigen::Isometry3d m = measured(moved({0.0, 0.1, 0.0}));
+  servo.update(m, desired, 33ms);
+  for (int k = 0; k < 10; ++k) servo.update(m, desired, 100ms);
+  const double learnt = servo.integral_term()[1];
+  ASSERT_GT(learnt, 1.0);
+  servo.hold_integral(1, true);
+  servo.restart();
+  EXPECT_NEAR(servo.integral_term()[1], learnt, 1e-12);
+  servo.update(m, desired, 100ms);
+  EXPECT_GT(servo.integral_term()[1], learnt);  // released by the restart
+  servo.reset();
+  EXPECT_TRUE(servo.integral_term().isZero());
+}
+
 }  // namespace
 }  // namespace rovctl::control
