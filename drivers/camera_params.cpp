@@ -26,6 +26,27 @@ void describe(hal::ParamVisitor& v, V4l2CameraParams& p) {
           {"ms", 1.0, 60000.0, "wait before reopening a lost camera; doubles on each failure"});
   v.param("reopen_backoff_max_ms", p.reopen_backoff_max_ms,
           {"ms", 1.0, 600000.0, "longest wait between reopen attempts"});
+  v.param("auto_exposure", p.auto_exposure,
+          "the cameras choose their exposure (in dim water up to the frame period, smearing a "
+          "moving marker); false sets exposure_time_us on both, and on the simulated cameras");
+  v.param("exposure_time_us", p.exposure_time_us,
+          {"us", 100, 1000000,
+           "exposure time with auto_exposure false, in the camera's 100 us steps; its maximum is "
+           "the smear budget: the marker's image speed times the exposure must stay under 1.35 "
+           "sphere diameters (the bring-up guide's camera section), and it must fit in the "
+           "frame period"});
+  v.param("gain", p.gain,
+          {"-", -1, 100000,
+           "sensor gain (V4L2_CID_GAIN) in the camera's own units, checked against its range at "
+           "open; -1 leaves it as the camera has it"});
+  v.param("white_balance", p.white_balance,
+          "auto: the cameras balance white themselves; lock: auto white balance off, at "
+          "white_balance_temperature_k",
+          {"auto", "lock"});
+  v.param("white_balance_temperature_k", p.white_balance_temperature_k,
+          {"K", 0, 15000,
+           "white-balance temperature with white_balance lock; 0 locks the temperature the "
+           "camera has at open"});
 }
 
 void describe(hal::ParamVisitor& v, ReplayCameraParams& p) {

@@ -20,6 +20,13 @@ struct V4l2CameraParams {
   double grab_timeout_ms = 200.0;
   double reopen_backoff_ms = 250.0;
   double reopen_backoff_max_ms = 4000.0;
+  // Camera controls, set on both cameras at open (drivers/v4l2/camera_controls). The exposure
+  // also drives the simulated cameras' motion smear, so one setting flies in sim and on the rig.
+  bool auto_exposure = true;
+  int exposure_time_us = 4000;          // with auto_exposure off; the smear budget caps it
+  int gain = -1;                        // -1: as the camera has it
+  std::string white_balance = "auto";   // auto | lock
+  int white_balance_temperature_k = 0;  // with lock; 0 locks the temperature the camera has
 };
 
 struct ReplayCameraParams {

@@ -4,6 +4,7 @@
 
 #include <cctype>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -95,6 +96,18 @@ hal::CameraModel camera_from(const std::string& file, const cv::Mat& K, const cv
   if (!(cam.fx_px > 0 && cam.fy_px > 0))
     fail_key(file, kname, "key '" + kname + "': focal lengths must be > 0");
   if (K.at<double>(2, 2) != 1.0) fail_key(file, kname, "key '" + kname + "': K(2,2) must be 1");
+  // The camera model has no skew and no other terms: a value off the pattern would be dropped
+  // without a word, moving every projection.
+  for (const auto& [r, c] : {std::pair{1, 0}, {2, 0}, {2, 1}, {0, 1}}) {
+    if (K.at<double>(r, c) != 0.0) {
+      char text[200];
+      std::snprintf(text, sizeof text,
+                    "key '%s': K(%d,%d) = %g, but a camera matrix is [fx 0 cx; 0 fy cy; 0 0 1] "
+                    "(upper-triangular, no skew)",
+                    kname.c_str(), r, c, K.at<double>(r, c));
+      fail_key(file, kname, text);
+    }
+  }
   const double* d = D.ptr<double>(0);
   cam.k1 = d[0];
   cam.k2 = d[1];
@@ -110,6 +123,31 @@ hal::CameraModel camera_from(const std::string& file, const cv::Mat& K, const cv
   cam.width_px = width;
   cam.height_px = height;
   return cam;
+}
+
+// The right camera's centre in the left camera's frame is -R^T T: it must lie to the right (+x,
+// OpenCV's x right, y down), which makes T.x negative for a level rig, and the cameras must stand
+// side by side, not one behind the other.
+void check_side_by_side(const std::string& file, const hal::StereoRig& rig) {
+  const Eigen::Vector3d centre = rig.T_cr_cl.inverse().translation();
+  const Eigen::Vector3d T = rig.T_cr_cl.translation();
+  char text[320];
+  if (std::abs(centre.x()) < 0.5 * centre.norm()) {
+    std::snprintf(text, sizeof text,
+                  "key 'T': T = [%g, %g, %g] puts the right camera %.3f m from the left one but "
+                  "only %.3f m to its side: the cameras must stand side by side (the sideways "
+                  "part at least half the baseline)",
+                  T.x(), T.y(), T.z(), centre.norm(), std::abs(centre.x()));
+    fail_key(file, "T", text);
+  }
+  if (centre.x() < 0.0) {
+    std::snprintf(text, sizeof text,
+                  "key 'T': T = [%g, %g, %g] puts the right camera %.3f m to the LEFT of the left "
+                  "one (centre -R^T T); in OpenCV's x_right = R * x_left + T a right camera has "
+                  "T.x < 0: are the left and right images or the sign of T swapped?",
+                  T.x(), T.y(), T.z(), -centre.x());
+    fail_key(file, "T", text);
+  }
 }
 
 }  // namespace
@@ -176,10 +214,27 @@ hal::StereoRig load_stereo_calibration(const std::string& file) {
              "key 'T': baseline " + std::to_string(rig.baseline_m()) +
                  " m is implausible (units must be metres)");
   }
+  check_side_by_side(file, rig);
   return rig;
 }
 
-void save_stereo_calibration(const std::string& file, const hal::StereoRig& rig) {
+CalibrationFigures load_calibration_figures(const std::string& file) {
+  CalibrationFigures f;
+  cv::FileStorage fs;
+  try {
+    if (!fs.open(file, cv::FileStorage::READ)) return f;
+  } catch (const cv::Exception&) {
+    return f;
+  }
+  if (fs["rms_reprojection_px"].isReal()) f.rms_reprojection_px = fs["rms_reprojection_px"];
+  if (fs["epipolar_rms_px"].isReal()) f.epipolar_rms_px = fs["epipolar_rms_px"];
+  if (fs["views_used"].isInt()) f.views_used = fs["views_used"];
+  if (fs["calibrated_utc"].isString())
+    f.calibrated_utc = static_cast<std::string>(fs["calibrated_utc"]);
+  return f;
+}
+
+void write_stereo_rig(cv::FileStorage& fs, const hal::StereoRig& rig) {
   auto K = [](const hal::CameraModel& c) -> cv::Mat {
     return (cv::Mat_<double>(3, 3) << c.fx_px, 0, c.cx_px, 0, c.fy_px, c.cy_px, 0, 0, 1);
   };
@@ -191,14 +246,17 @@ void save_stereo_calibration(const std::string& file, const hal::StereoRig& rig)
     for (int c = 0; c < 3; ++c) R.at<double>(r, c) = rig.T_cr_cl.linear()(r, c);
     T.at<double>(r) = rig.T_cr_cl.translation()(r);
   }
+  fs << "K1" << K(rig.left) << "D1" << D(rig.left) << "K2" << K(rig.right) << "D2" << D(rig.right);
+  fs << "R" << R << "T" << T;
+}
+
+void save_stereo_calibration(const std::string& file, const hal::StereoRig& rig) {
   const std::string tmp = file + ".tmp";
   {
     cv::FileStorage fs(tmp, cv::FileStorage::WRITE | cv::FileStorage::FORMAT_YAML);
     if (!fs.isOpened()) throw std::runtime_error(file + ": cannot write calibration file");
     fs << "image_size" << std::vector<int>{rig.left.width_px, rig.left.height_px};
-    fs << "K1" << K(rig.left) << "D1" << D(rig.left) << "K2" << K(rig.right) << "D2"
-       << D(rig.right);
-    fs << "R" << R << "T" << T;
+    write_stereo_rig(fs, rig);
   }
   std::filesystem::rename(tmp, file);  // never a half-written calibration
 }

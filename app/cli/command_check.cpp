@@ -2,6 +2,7 @@
 // on ArduSub, its failsafe parameters); exit 0 when all pass, 2 when any fails. Nothing is armed.
 #include <array>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <iostream>
 #include <optional>
@@ -15,6 +16,8 @@
 #include "drivers/mavlink/ardusub_failsafe_params.hpp"
 #include "drivers/mavlink/ardusub_gcs_id.hpp"
 #include "drivers/mavlink/ardusub_thruster_bus.hpp"
+#include "drivers/v4l2/v4l2_stereo_camera.hpp"
+#include "estimator/stereo_calibration.hpp"
 
 namespace rovctl::app {
 namespace {
@@ -27,7 +30,74 @@ struct Checker {
     if (!ok) std::cerr << "rovctl check: " << what << ": " << detail << "\n";
     if (!ok) ++failures;
   }
+  // PASS, WARN or FAIL by a figure against two limits (lower is better).
+  void graded(double value, double pass_max, double warn_max, const std::string& what,
+              const std::string& detail) {
+    if (value > pass_max && value <= warn_max) {
+      std::cout << "WARN  " << what << ": " << detail << "\n";
+      return;
+    }
+    line(value <= pass_max, what, detail);
+  }
 };
+
+std::string figure(double v, int decimals) {
+  char text[32];
+  std::snprintf(text, sizeof(text), "%.*f", decimals, v);
+  return text;
+}
+
+// What `rovctl calibrate` recorded in the file, and the baseline against the one measured on the
+// rig (validation.expected_baseline_m): a calibration can load and still be a poor one.
+void check_calibration_figures(Checker& check, const AppConfig& config, const hal::StereoRig& rig) {
+  const estimator::CalibrationFigures f =
+      estimator::load_calibration_figures(config.calibration_file);
+  if (std::isnan(f.rms_reprojection_px)) {
+    std::cout << "WARN  calibration figures: none in " << config.calibration_file
+              << " (not written by rovctl calibrate): reprojection and epipolar error unknown\n";
+  } else {
+    check.graded(f.rms_reprojection_px, 0.5, 1.0, "calibration RMS reprojection",
+                 figure(f.rms_reprojection_px, 3) + " px over " + std::to_string(f.views_used) +
+                     " views, " + f.calibrated_utc + " (PASS <= 0.5, WARN <= 1 px)");
+  }
+  if (!std::isnan(f.epipolar_rms_px)) {
+    check.graded(f.epipolar_rms_px, 0.5, 1.0, "calibration epipolar error",
+                 figure(f.epipolar_rms_px, 3) +
+                     " px RMS between rectified rows (PASS <= 0.5, WARN <= 1 px)");
+  }
+  const double expected_m = config.validation.expected_baseline_m;
+  if (expected_m > 0.0) {
+    const double off_pct = 100.0 * std::abs(rig.baseline_m() / expected_m - 1.0);
+    check.graded(off_pct, 2.0, 5.0, "calibration baseline",
+                 figure(rig.baseline_m() * 1000.0, 1) + " mm, " + figure(off_pct, 1) +
+                     " % from validation.expected_baseline_m " + figure(expected_m * 1000.0, 1) +
+                     " mm (PASS <= 2 %, WARN <= 5 %)");
+  }
+}
+
+// The V4L2 cameras' controls as open() set them: set against read back, WARN for a control the
+// camera lacks, FAIL for a value it cannot honour. True when one was refused.
+bool check_camera_controls(Checker& check, const AppConfig& config,
+                           const hal::StereoCamera& camera) {
+  const auto* v4l2 = dynamic_cast<const drivers::V4l2StereoCamera*>(&camera);
+  if (v4l2 == nullptr) return false;
+  bool refused = false;
+  for (const drivers::ControlReportLine& l : v4l2->controls_report()) {
+    if (l.level == drivers::ControlLevel::fail) {
+      // The key the camera cannot honour, with its file and line.
+      const std::size_t at = l.text.find("camera.v4l2.");
+      const std::string where =
+          at == std::string::npos
+              ? std::string()
+              : config_location(config, l.text.substr(at, l.text.find(' ', at) - at)) + ": ";
+      check.line(false, "camera", where + l.text);
+      refused = true;
+    } else {
+      std::cout << drivers::to_string(l.level) << "  camera " << l.text << "\n";
+    }
+  }
+  return refused;
+}
 
 // ArduSub's own failsafes are what stops the vehicle when rovctl dies: each one read back, with
 // whether its value is safe for rovctl (drivers/mavlink/ardusub_failsafe_params).
@@ -133,10 +203,13 @@ int command_check(const Words& words) {
     check.line(false, "calibration", e.what());
     return kExitUsage;
   }
+  check_calibration_figures(check, config, rig);
 
   VehicleBackends hw = make_vehicle_backends(config, rig);
   std::string error;
-  if (hw.camera->open(error)) {
+  const bool opened = hw.camera->open(error);
+  const bool refused = check_camera_controls(check, config, *hw.camera);
+  if (opened) {
     hal::StereoFrame frame;
     hal::GrabStatus status = hal::GrabStatus::timeout;
     for (int attempt = 0; attempt < 30 && status != hal::GrabStatus::ok; ++attempt) {
@@ -161,7 +234,7 @@ int command_check(const Words& words) {
     }
     check.line(size_ok, "camera", detail);
     hw.camera->close();
-  } else {
+  } else if (!refused) {  // a refused control is its own FAIL line above
     check.line(false, "camera", error);
   }
   if (hw.bus->open(error)) {

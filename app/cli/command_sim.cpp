@@ -27,15 +27,138 @@
 namespace rovctl::app {
 namespace {
 constexpr double kRechargeMaxTimeS = 400.0;
+
+struct TrialRange {
+  int trials = 1;
+  int first_trial = 0;
+  std::uint64_t seed = 1;
+};
+
+// Flies `trials` trials from `first_trial` on `jobs` threads, each reported on stderr as it ends;
+// false (said on stderr) when one threw.
+bool fly_trials(const AppConfig& config, const hal::StereoRig& rig,
+                const hal::mock::TrialGenerator& generator, const TrialOptions& options,
+                const TrialRange& range, int jobs, bool json, std::vector<TrialResult>& results) {
+  const int trials = range.trials, first_trial = range.first_trial;
+  const std::uint64_t seed = range.seed;
+  results.clear();
+  results.resize(static_cast<std::size_t>(trials));
+  std::atomic<int> next{0};
+  std::atomic<int> done{0};
+  std::mutex report_mutex;
+  std::string failure;
+  const bool tty = isatty(STDERR_FILENO) != 0;
+  auto worker = [&]() {
+    for (int i = next++; i < trials; i = next++) {
+      try {
+        results[static_cast<std::size_t>(i)] =
+            run_docking_trial(config, rig, generator.make(first_trial + i, seed), options);
+      } catch (const std::exception& e) {
+        std::lock_guard<std::mutex> lock(report_mutex);
+        failure = e.what();
+        next = trials;
+        return;
+      }
+      const int finished = ++done;
+      std::lock_guard<std::mutex> lock(report_mutex);
+      const TrialResult& r = results[static_cast<std::size_t>(i)];
+      if (tty || !json) {
+        std::cerr << (tty ? "\r" : "") << "trial " << first_trial + i << ": "
+                  << (r.recharge        ? (trial_recharged(r) ? "docked, charged, departed"
+                                                              : "recharge incomplete")
+                      : trial_docked(r) ? "docked"
+                      : r.docked        ? "docked off tolerance"
+                                        : "not docked")
+                  << " (" << r.final_state << ", " << r.sim_time_s << " s)  [" << finished << "/"
+                  << trials << "]" << (tty ? "          " : "\n") << std::flush;
+      }
+    }
+  };
+  std::vector<std::thread> pool;
+  for (int j = 0; j < std::min(jobs, trials); ++j) pool.emplace_back(worker);
+  for (auto& t : pool) t.join();
+  if (tty) std::cerr << "\n";
+  if (!failure.empty()) {
+    std::cerr << "rovctl sim: " << failure << "\n";
+    return false;
+  }
+  return true;
+}
+
+// The exposure scenario flies the cameras' auto exposure against the config's manual one
+// (camera.v4l2.exposure_time_us), the same trials each; --exposure flies one of them.
+struct ExposureArm {
+  std::string label;  // "auto exposure (33 ms)", "exposure 4000 us"
+  bool auto_exposure = true;
+  int exposure_time_us = 0;
+};
+
+std::vector<ExposureArm> exposure_arms(const CliArgs& args, const AppConfig& config) {
+  const drivers::V4l2CameraParams& cam = config.camera.v4l2;
+  const ExposureArm auto_arm{
+      "auto exposure (" +
+          std::to_string(config.sim.scenarios.exposure.auto_exposure_ms).substr(0, 4) +
+          " ms, unknown to the frames)",
+      true, cam.exposure_time_us};
+  auto manual = [](int us) {
+    return ExposureArm{"exposure " + std::to_string(us) + " us", false, us};
+  };
+  if (args.has("--exposure")) {
+    const std::string e = args.get("--exposure");
+    if (e == "auto") return {auto_arm};
+    const int frame_us = 1000000 / cam.fps;
+    const long us = args.get_int("--exposure", 0, 100, frame_us);
+    return {manual(static_cast<int>(us))};
+  }
+  if (config.sim.scenario != "exposure") {
+    return {cam.auto_exposure ? auto_arm : manual(cam.exposure_time_us)};
+  }
+  return {auto_arm, manual(cam.exposure_time_us)};
+}
+
+}  // namespace
+
+namespace {
+
+// Each arm's summary, and one line per arm side by side: docked, and the estimator's ok ticks.
+void print_exposure_arms(const std::vector<std::pair<ExposureArm, std::vector<TrialResult>>>& flown,
+                         bool json) {
+  std::string lines;
+  if (json) std::cout << "{\"arms\": [";
+  for (std::size_t i = 0; i < flown.size(); ++i) {
+    const auto& [arm, results] = flown[i];
+    const SimSummary s = summarise(results);
+    if (json) {
+      std::cout << (i == 0 ? "" : ", ")
+                << "{\"auto_exposure\": " << (arm.auto_exposure ? "true" : "false")
+                << ", \"exposure_time_us\": "
+                << (arm.auto_exposure ? std::string("null") : std::to_string(arm.exposure_time_us))
+                << ", \"summary\": " << summary_json(s) << "}";
+    } else {
+      std::cout << arm.label << ":\n" << summary_text(s, results) << "\n";
+    }
+    const double ok_pct = s.ticks == 0 ? 0.0 : 100.0 * static_cast<double>(s.ok_ticks) / s.ticks;
+    lines += "  " + arm.label + ": docked " + std::to_string(s.docked) + " of " +
+             std::to_string(s.trials) + ", ok estimates on " +
+             std::to_string(ok_pct).substr(0, std::to_string(ok_pct).find('.') + 2) +
+             " % of ticks, ok but wrong " + std::to_string(s.ok_wrong_ticks) + "\n";
+  }
+  if (json) {
+    std::cout << "]}\n";
+  } else {
+    std::cout << "exposure arms, the same trials:\n" << lines;
+  }
+}
+
 }  // namespace
 
 int command_sim(const Words& words) {
-  const CliArgs args =
-      CliArgs::parse("sim", words,
-                     {"--config", "--trials", "--seed", "--out", "--jobs", "--max-time", "--plots",
-                      "--scenario", "--mission", "--serve", "--token", "--serve-linger",
-                      "--charge-fault", "--first-trial", "--thruster-fault", "--fault"},
-                     {"--realtime", "--json", "--verbose", "--hold"});
+  const CliArgs args = CliArgs::parse(
+      "sim", words,
+      {"--config", "--trials", "--seed", "--out", "--jobs", "--max-time", "--plots", "--scenario",
+       "--mission", "--serve", "--token", "--serve-linger", "--charge-fault", "--first-trial",
+       "--thruster-fault", "--fault", "--exposure"},
+      {"--realtime", "--json", "--verbose", "--hold"});
   const std::string config_file =
       args.has("--config") ? args.get("--config") : default_config_path();
   const int trials = static_cast<int>(args.get_int("--trials", 1, 1, 100000));
@@ -149,45 +272,26 @@ int command_sim(const Words& words) {
     options.operator_hold_at_start = args.has("--hold");
   }
 
-  std::vector<TrialResult> results(static_cast<std::size_t>(trials));
-  std::atomic<int> next{0};
-  std::atomic<int> done{0};
-  std::mutex report_mutex;
-  std::string failure;
-  const bool tty = isatty(STDERR_FILENO) != 0;
-  auto worker = [&]() {
-    for (int i = next++; i < trials; i = next++) {
-      try {
-        results[static_cast<std::size_t>(i)] =
-            run_docking_trial(config, rig, generator.make(first_trial + i, seed), options);
-      } catch (const std::exception& e) {
-        std::lock_guard<std::mutex> lock(report_mutex);
-        failure = e.what();
-        next = trials;
-        return;
-      }
-      const int finished = ++done;
-      std::lock_guard<std::mutex> lock(report_mutex);
-      const TrialResult& r = results[static_cast<std::size_t>(i)];
-      if (tty || !json) {
-        std::cerr << (tty ? "\r" : "") << "trial " << first_trial + i << ": "
-                  << (r.recharge        ? (trial_recharged(r) ? "docked, charged, departed"
-                                                              : "recharge incomplete")
-                      : trial_docked(r) ? "docked"
-                      : r.docked        ? "docked off tolerance"
-                                        : "not docked")
-                  << " (" << r.final_state << ", " << r.sim_time_s << " s)  [" << finished << "/"
-                  << trials << "]" << (tty ? "          " : "\n") << std::flush;
-      }
+  const std::vector<ExposureArm> arms = exposure_arms(args, config);
+  if (arms.size() > 1 && (!out_dir.empty() || serve)) {
+    throw UsageError(
+        "rovctl sim: --scenario exposure flies two arms (auto and manual exposure); give "
+        "--exposure auto or --exposure MICROSECONDS to fly one with --out or --serve");
+  }
+  std::vector<std::pair<ExposureArm, std::vector<TrialResult>>> flown;
+  for (const ExposureArm& arm : arms) {
+    AppConfig arm_config = config;
+    arm_config.camera.v4l2.auto_exposure = arm.auto_exposure;
+    arm_config.camera.v4l2.exposure_time_us = arm.exposure_time_us;
+    if (arms.size() > 1 && (isatty(STDERR_FILENO) != 0 || !json)) {
+      std::cerr << arm.label << ":\n";
     }
-  };
-  std::vector<std::thread> pool;
-  for (int j = 0; j < std::min(jobs, trials); ++j) pool.emplace_back(worker);
-  for (auto& t : pool) t.join();
-  if (tty) std::cerr << "\n";
-  if (!failure.empty()) {
-    std::cerr << "rovctl sim: " << failure << "\n";
-    return kExitRuntimeFailure;
+    std::vector<TrialResult> results;
+    if (!fly_trials(arm_config, rig, generator, options, {trials, first_trial, seed}, jobs, json,
+                    results)) {
+      return kExitRuntimeFailure;
+    }
+    flown.emplace_back(arm, std::move(results));
   }
 
   if (view) {
@@ -196,14 +300,19 @@ int command_sim(const Words& words) {
     view->stop();
   }
 
-  const SimSummary summary = summarise(results);
-  if (!out_dir.empty()) write_sim_outputs(out_dir, results, summary, plots);
-  if (json) {
-    std::cout << summary_json(summary) << "\n";
-  } else {
-    std::cout << summary_text(summary, results);
-    if (!out_dir.empty()) std::cout << "logs and plots in " << out_dir << "/\n";
+  if (flown.size() == 1) {
+    const std::vector<TrialResult>& results = flown.front().second;
+    const SimSummary summary = summarise(results);
+    if (!out_dir.empty()) write_sim_outputs(out_dir, results, summary, plots);
+    if (json) {
+      std::cout << summary_json(summary) << "\n";
+    } else {
+      std::cout << summary_text(summary, results);
+      if (!out_dir.empty()) std::cout << "logs and plots in " << out_dir << "/\n";
+    }
+    return kExitOk;
   }
+  print_exposure_arms(flown, json);
   return kExitOk;
 }
 

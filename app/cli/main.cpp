@@ -17,9 +17,10 @@ commands:
   sim        [--config FILE] [--trials N] [--seed S] [--realtime] [--json] [--out DIR]
              [--mission dock|recharge] [--scenario NAME] [--jobs N] [--max-time S]
              [--first-trial I] [--charge-fault FAULT] [--fault NAME[@T_S]]...
-             [--thruster-fault dead|weak|stuck]
+             [--thruster-fault dead|weak|stuck] [--exposure auto|US]
              closed-loop docking (or dock, charge, undock: --mission recharge) on the mock
-             HAL; NAME: clear, turbid, side_light, bubbles, occluders, noisy, exposure;
+             HAL; NAME: clear, turbid, side_light, bubbles, occluders, noisy, exposure
+             (exposure: auto exposure against camera.v4l2.exposure_time_us, or --exposure);
              FAULT (recharge, injected mid-charge): none, knock, knocks, surge, charger,
              operator, camera; --fault (repeatable) injects NAME at T_S (default 0):
              camera_lost, camera_drop, frozen_frames, stale_frames, stamp_skew,
@@ -46,6 +47,11 @@ commands:
   thrusters  --config FILE --test [--yes] motor test, one thruster at a time
   thrusters  --config FILE --safe [--timeout-ms N] neutral + disarm, exit 0 once acknowledged
   record     --config FILE --out DIR [--frames N]  save timestamped stereo pairs
+  calibrate  --pairs DIR --board chessboard:COLSxROWS:SQUARE_MM --out FILE [--json] [--force]
+             stereo calibration from a recording of a chessboard (COLSxROWS inner corners)
+  tune-marker --config FILE --pairs DIR --out FILE [--images DIR] [--json] [--force]
+             the marker's hue windows and floors measured in a recording (DIR as
+             `record` writes it), as a `marker:` config fragment, with figures
   params     [--config FILE]              every config parameter: unit, range, default, meaning
 
 exit codes: 0 success, 1 runtime failure, 2 usage or config error
@@ -74,10 +80,12 @@ int main(int argc, char** argv) {
     if (command == "check") return command_check(words);
     if (command == "thrusters") return command_thrusters(words);
     if (command == "record") return command_record(words);
+    if (command == "tune-marker") return command_tune_marker(words);
     if (command == "study") return command_study(words);
     if (command == "params") return command_params(words);
     if (command == "view") return command_view(words);
     if (command == "faults") return command_faults(words);
+    if (command == "calibrate") return command_calibrate(words);
     std::cerr << "rovctl: unknown command '" << command << "'\n" << kUsage;
     return kExitUsage;
   } catch (const UsageError& e) {

@@ -113,6 +113,24 @@ void check_marker(const AppConfig& config) {
   }
 }
 
+// The camera controls' keys that only mean something together; the camera's own ranges are
+// checked when it is opened (drivers/v4l2/camera_controls), where `check` reports them.
+void check_camera_controls(const AppConfig& config) {
+  const drivers::V4l2CameraParams& v = config.camera.v4l2;
+  const double frame_period_us = 1e6 / v.fps;
+  if (!v.auto_exposure && v.exposure_time_us > frame_period_us) {
+    throw ConfigError(config_location(config, "camera.v4l2.exposure_time_us") + ": " +
+                      std::to_string(v.exposure_time_us) +
+                      " us does not fit in the frame period at camera.v4l2.fps " +
+                      std::to_string(v.fps) + " (" +
+                      std::to_string(static_cast<int>(frame_period_us)) + " us)");
+  }
+  if (v.white_balance == "auto" && v.white_balance_temperature_k != 0) {
+    throw ConfigError(config_location(config, "camera.v4l2.white_balance_temperature_k") +
+                      ": needs camera.v4l2.white_balance lock (auto white balance ignores it)");
+  }
+}
+
 void check_contact(AppConfig& config) {
   control::MissionParams& m = config.mission;
   if (m.contact_switch && !backends_report_contact(config)) {
@@ -210,6 +228,10 @@ void describe(hal::ParamVisitor& v, ValidationLimits& l) {
           {"m", 0.001, 5.0, "calibration: longest stereo baseline |T| (T in metres)"});
   v.param("max_rig_rotation_deg", l.max_rig_rotation_deg,
           {"deg", 0.0, 180.0, "calibration: largest angle between the two cameras (R)"});
+  v.param("expected_baseline_m", l.expected_baseline_m,
+          {"m", 0.0, 5.0,
+           "calibration: the baseline measured on the rig, for `rovctl check` (0: not given; "
+           "PASS within 2 %, WARN within 5 %, FAIL beyond)"});
   v.param("thruster_min_singular_ratio", l.thruster_min_singular_ratio,
           {"-", 0.0, 1.0,
            "thrusters: least ratio of smallest to largest singular value of the effectiveness "
@@ -279,6 +301,7 @@ void validate_app_config(AppConfig& config) {
   }
   check_thrusters(config);
   check_marker(config);
+  check_camera_controls(config);
   check_contact(config);
   if (config.operator_view.enabled()) {
     ListenAddress address;

@@ -33,6 +33,9 @@ struct ValidationLimits {
   double baseline_min_m = 0.03;
   double baseline_max_m = 1.0;
   double max_rig_rotation_deg = 30.0;
+  // The baseline measured on the vehicle (0: not given); `rovctl check` holds the calibration's
+  // |T| against it.
+  double expected_baseline_m = 0.0;
   // Thrusters: of the effectiveness rows of the servoed axes (x, y, z, yaw; all six with
   // control.servo.six_dof), each scaled to unit norm, the smallest singular value over the
   // largest. 0: some combination of those axes cannot be pushed at all.

@@ -33,6 +33,8 @@ std::unique_ptr<hal::mock::SimulatedHal> make_sim(const AppConfig& config,
                                                   bool realtime) {
   hal::mock::SimParams sim = hal::mock::params_for_trial(config.sim, trial);
   sim.realtime = realtime;
+  const drivers::V4l2CameraParams& cam = config.camera.v4l2;
+  sim.camera.exposure_ms = cam.auto_exposure ? 0.0 : cam.exposure_time_us / 1000.0;
   return std::make_unique<hal::mock::SimulatedHal>(sim, config.vehicle, config.station, rig,
                                                    config.marker, trial);
 }

@@ -8,11 +8,22 @@
 namespace rovctl::app {
 
 void write_file_atomically(const std::string& path, const std::string& text) {
+  write_file_atomically(path, text, [](const std::string&) {});
+}
+
+void write_file_atomically(const std::string& path, const std::string& text,
+                           const std::function<void(const std::string& written)>& check) {
   const std::string tmp = path + ".tmp";
   {
     std::ofstream f(tmp, std::ios::binary);
     f << text;
     if (!f) throw std::runtime_error(path + ": cannot write");
+  }
+  try {
+    check(tmp);
+  } catch (...) {
+    std::filesystem::remove(tmp);
+    throw;
   }
   std::filesystem::rename(tmp, path);
 }

@@ -1,10 +1,9 @@
-// V4L2 capture through the kernel API: QUERYCAP, ENUM_FMT, S_FMT, S_PARM, REQBUFS/QUERYBUF/mmap,
-// QBUF/DQBUF and STREAMON, with the device named in every error.
+// V4L2 capture through the kernel API: QUERYCAP, ENUM_FMT, S_FMT, S_PARM, the camera controls,
+// REQBUFS/QUERYBUF/mmap, QBUF/DQBUF and STREAMON, with the device named in every error.
 #include "drivers/v4l2/v4l2_device.hpp"
 
 #include <fcntl.h>
 #include <linux/videodev2.h>
-#include <sys/ioctl.h>
 #include <sys/mman.h>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -18,14 +17,6 @@
 namespace rovctl::drivers {
 
 namespace {
-
-int xioctl(int fd, unsigned long request, void* arg) {
-  int r = 0;
-  do {
-    r = ::ioctl(fd, request, arg);
-  } while (r == -1 && errno == EINTR);
-  return r;
-}
 
 std::string errno_text(const char* call) { return std::string(call) + ": " + std::strerror(errno); }
 
@@ -41,7 +32,8 @@ std::string resolve_video_device(const std::string& device) {
   return device;
 }
 
-V4l2Device::V4l2Device(V4l2DeviceConfig config) : config_(std::move(config)) {}
+V4l2Device::V4l2Device(V4l2DeviceConfig config, V4l2Ioctl& io)
+    : config_(std::move(config)), io_(io) {}
 
 V4l2Device::~V4l2Device() { close(); }
 
@@ -73,7 +65,7 @@ bool V4l2Device::open(std::string& error) {
     return fail(error, "not a V4L2 device (not a character device)");
   }
   v4l2_capability cap{};
-  if (xioctl(fd_, VIDIOC_QUERYCAP, &cap) != 0) {
+  if (io_.call(fd_, VIDIOC_QUERYCAP, &cap) != 0) {
     return fail(error, "not a V4L2 device (" + errno_text("VIDIOC_QUERYCAP") + ")");
   }
   card_ = reinterpret_cast<const char*>(cap.card);
@@ -88,9 +80,16 @@ bool V4l2Device::open(std::string& error) {
     return fail(error, "\"" + card_ + "\" does not support streaming I/O (MMAP)");
   }
   if (!negotiate(error)) return false;
+  if (!apply_camera_controls(io_, fd_, config_.controls, controls_)) {
+    std::string refused;
+    for (const ControlReportLine& l : controls_.lines) {
+      if (l.level == ControlLevel::fail) refused += (refused.empty() ? "" : "; ") + l.text;
+    }
+    return fail(error, refused);
+  }
   if (!map_buffers(error)) return false;
   v4l2_buf_type type = V4L2_BUF_TYPE_VIDEO_CAPTURE;
-  if (xioctl(fd_, VIDIOC_STREAMON, &type) != 0) return fail(error, errno_text("VIDIOC_STREAMON"));
+  if (io_.call(fd_, VIDIOC_STREAMON, &type) != 0) return fail(error, errno_text("VIDIOC_STREAMON"));
   streaming_ = true;
   have_sequence_ = false;
   return true;
@@ -102,7 +101,7 @@ bool V4l2Device::negotiate(std::string& error) {
     v4l2_fmtdesc desc{};
     desc.index = i;
     desc.type = V4L2_BUF_TYPE_VIDEO_CAPTURE;
-    if (xioctl(fd_, VIDIOC_ENUM_FMT, &desc) != 0) break;
+    if (io_.call(fd_, VIDIOC_ENUM_FMT, &desc) != 0) break;
     offered.push_back(desc.pixelformat);
   }
   const auto chosen = choose_pixel_format(offered, config_.preferred);
@@ -118,7 +117,7 @@ bool V4l2Device::negotiate(std::string& error) {
   fmt.fmt.pix.height = static_cast<std::uint32_t>(config_.height);
   fmt.fmt.pix.pixelformat = fourcc_of(*chosen);
   fmt.fmt.pix.field = V4L2_FIELD_NONE;
-  if (xioctl(fd_, VIDIOC_S_FMT, &fmt) != 0) {
+  if (io_.call(fd_, VIDIOC_S_FMT, &fmt) != 0) {
     return fail(error, errno_text("VIDIOC_S_FMT") + " (" + fourcc_to_string(fourcc_of(*chosen)) +
                            " " + std::to_string(config_.width) + "x" +
                            std::to_string(config_.height) + ")");
@@ -141,12 +140,12 @@ bool V4l2Device::negotiate(std::string& error) {
   v4l2_streamparm parm{};
   parm.type = V4L2_BUF_TYPE_VIDEO_CAPTURE;
   fps_ = 0.0;
-  if (xioctl(fd_, VIDIOC_G_PARM, &parm) == 0 &&
+  if (io_.call(fd_, VIDIOC_G_PARM, &parm) == 0 &&
       (parm.parm.capture.capability & V4L2_CAP_TIMEPERFRAME) != 0) {
     parm.parm.capture.timeperframe.numerator = 1;
     parm.parm.capture.timeperframe.denominator = static_cast<std::uint32_t>(config_.fps);
     // Not every driver can set the rate; the frames' own stamps remain authoritative.
-    if (xioctl(fd_, VIDIOC_S_PARM, &parm) == 0 && parm.parm.capture.timeperframe.numerator != 0) {
+    if (io_.call(fd_, VIDIOC_S_PARM, &parm) == 0 && parm.parm.capture.timeperframe.numerator != 0) {
       fps_ = static_cast<double>(parm.parm.capture.timeperframe.denominator) /
              parm.parm.capture.timeperframe.numerator;
     }
@@ -159,7 +158,7 @@ bool V4l2Device::map_buffers(std::string& error) {
   req.count = static_cast<std::uint32_t>(config_.buffer_count);
   req.type = V4L2_BUF_TYPE_VIDEO_CAPTURE;
   req.memory = V4L2_MEMORY_MMAP;
-  if (xioctl(fd_, VIDIOC_REQBUFS, &req) != 0) return fail(error, errno_text("VIDIOC_REQBUFS"));
+  if (io_.call(fd_, VIDIOC_REQBUFS, &req) != 0) return fail(error, errno_text("VIDIOC_REQBUFS"));
   if (req.count < 2) {
     return fail(error, "the driver granted " + std::to_string(req.count) +
                            " capture buffer(s); at least 2 are needed");
@@ -171,7 +170,7 @@ bool V4l2Device::map_buffers(std::string& error) {
     buf.type = V4L2_BUF_TYPE_VIDEO_CAPTURE;
     buf.memory = V4L2_MEMORY_MMAP;
     buf.index = i;
-    if (xioctl(fd_, VIDIOC_QUERYBUF, &buf) != 0) {
+    if (io_.call(fd_, VIDIOC_QUERYBUF, &buf) != 0) {
       return fail(error, errno_text("VIDIOC_QUERYBUF"));
     }
     void* start = ::mmap(nullptr, buf.length, PROT_READ | PROT_WRITE, MAP_SHARED, fd_,
@@ -184,7 +183,7 @@ bool V4l2Device::map_buffers(std::string& error) {
     buf.type = V4L2_BUF_TYPE_VIDEO_CAPTURE;
     buf.memory = V4L2_MEMORY_MMAP;
     buf.index = i;
-    if (xioctl(fd_, VIDIOC_QBUF, &buf) != 0) return fail(error, errno_text("VIDIOC_QBUF"));
+    if (io_.call(fd_, VIDIOC_QBUF, &buf) != 0) return fail(error, errno_text("VIDIOC_QBUF"));
   }
   return true;
 }
@@ -192,7 +191,7 @@ bool V4l2Device::map_buffers(std::string& error) {
 void V4l2Device::close() {
   if (fd_ >= 0 && streaming_) {
     v4l2_buf_type type = V4L2_BUF_TYPE_VIDEO_CAPTURE;
-    xioctl(fd_, VIDIOC_STREAMOFF, &type);  // fails harmlessly on an unplugged device
+    io_.call(fd_, VIDIOC_STREAMOFF, &type);  // fails harmlessly on an unplugged device
   }
   streaming_ = false;
   for (const Mapping& m : buffers_) {
@@ -202,7 +201,7 @@ void V4l2Device::close() {
     v4l2_requestbuffers req{};
     req.type = V4L2_BUF_TYPE_VIDEO_CAPTURE;
     req.memory = V4L2_MEMORY_MMAP;
-    xioctl(fd_, VIDIOC_REQBUFS, &req);
+    io_.call(fd_, VIDIOC_REQBUFS, &req);
   }
   buffers_.clear();
   if (fd_ >= 0) ::close(fd_);
@@ -218,7 +217,7 @@ DequeueStatus V4l2Device::dequeue(V4l2Buffer& out, std::string& error) {
     v4l2_buffer buf{};
     buf.type = V4L2_BUF_TYPE_VIDEO_CAPTURE;
     buf.memory = V4L2_MEMORY_MMAP;
-    if (xioctl(fd_, VIDIOC_DQBUF, &buf) != 0) {
+    if (io_.call(fd_, VIDIOC_DQBUF, &buf) != 0) {
       if (errno == EAGAIN) return DequeueStatus::empty;
       // ENODEV: unplugged; EIO/EINVAL and the rest: the stream is broken. A reopen cures both.
       error = "camera " + config_.device + ": " + errno_text("VIDIOC_DQBUF");
@@ -261,7 +260,7 @@ bool V4l2Device::requeue(int index, std::string& error) {
   buf.type = V4L2_BUF_TYPE_VIDEO_CAPTURE;
   buf.memory = V4L2_MEMORY_MMAP;
   buf.index = static_cast<std::uint32_t>(index);
-  if (xioctl(fd_, VIDIOC_QBUF, &buf) != 0) {
+  if (io_.call(fd_, VIDIOC_QBUF, &buf) != 0) {
     error = "camera " + config_.device + ": " + errno_text("VIDIOC_QBUF");
     return false;
   }

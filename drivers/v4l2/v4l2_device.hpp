@@ -8,7 +8,9 @@
 #include <string>
 #include <vector>
 
+#include "drivers/v4l2/camera_controls.hpp"
 #include "drivers/v4l2/pixel_format.hpp"
+#include "drivers/v4l2/v4l2_ioctl.hpp"
 
 namespace rovctl::drivers {
 
@@ -19,6 +21,7 @@ struct V4l2DeviceConfig {
   int fps = 30;
   PixelFormat preferred = PixelFormat::yuyv;  // the other supported format is the fallback
   int buffer_count = 4;                       // MMAP ring size requested (the driver may add)
+  CameraControlSettings controls;             // exposure, gain, white balance, set at open
 };
 
 // A buffer the kernel has filled; valid until it is given back with requeue().
@@ -40,13 +43,15 @@ std::string resolve_video_device(const std::string& device);
 
 class V4l2Device {
  public:
-  explicit V4l2Device(V4l2DeviceConfig config);
+  // Every ioctl goes through `io` (the kernel's unless a test gives a fake).
+  explicit V4l2Device(V4l2DeviceConfig config, V4l2Ioctl& io = system_v4l2_ioctl());
   ~V4l2Device();
   V4l2Device(const V4l2Device&) = delete;
   V4l2Device& operator=(const V4l2Device&) = delete;
 
-  // Opens, negotiates, maps the buffer ring and starts streaming. On failure returns false with
-  // an `error` that names the device (and what it offers when the format is the problem).
+  // Opens, negotiates, sets the camera controls, maps the buffer ring and starts streaming. On
+  // failure returns false with an `error` that names the device (and what it offers when the
+  // format is the problem, or the control and the camera's range when a control is refused).
   bool open(std::string& error);
   // Stops streaming and unmaps; safe on a device that has disappeared.
   void close();
@@ -73,6 +78,8 @@ class V4l2Device {
   std::uint64_t corrupt_buffers() const { return corrupt_buffers_; }
   // "/dev/rovctl/cam-left (/dev/video0, "HD USB Camera"), MJPG 640x480 @ 30 fps, 4 buffers"
   std::string summary() const;
+  // What open() did with the camera controls (set against read back, WARN for a missing one).
+  const CameraControlReport& controls() const { return controls_; }
 
  private:
   bool fail(std::string& error, const std::string& what);
@@ -85,6 +92,8 @@ class V4l2Device {
   };
 
   V4l2DeviceConfig config_;
+  V4l2Ioctl& io_;
+  CameraControlReport controls_;
   std::string path_;
   std::string card_;
   int fd_ = -1;

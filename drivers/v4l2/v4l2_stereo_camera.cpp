@@ -26,6 +26,11 @@ V4l2DeviceConfig device_config(const V4l2CameraParams& p, const std::string& dev
   c.fps = p.fps;
   c.preferred = pixel_format_from_string(p.format).value_or(PixelFormat::yuyv);
   c.buffer_count = p.buffer_count;
+  c.controls.auto_exposure = p.auto_exposure;
+  c.controls.exposure_time_us = p.exposure_time_us;
+  c.controls.gain = p.gain;
+  c.controls.white_balance = p.white_balance;
+  c.controls.white_balance_temperature_k = p.white_balance_temperature_k;
   return c;
 }
 
@@ -89,8 +94,21 @@ bool V4l2StereoCamera::open_devices(std::string& error) {
     last_error_ = "note: left camera streams " + std::string(to_string(left_.format())) +
                   ", right camera " + to_string(right_.format());
   }
+  // Known only when both cameras read back a manual exposure; the longer one bounds the smear.
+  const auto l = left_.controls().exposure, r = right_.controls().exposure;
+  exposure_ = l.count() > 0 && r.count() > 0 ? std::max(l, r) : std::chrono::nanoseconds(0);
   streaming_ = true;
   return true;
+}
+
+std::vector<ControlReportLine> V4l2StereoCamera::controls_report() const {
+  std::vector<ControlReportLine> lines;
+  for (const V4l2Device* d : {&left_, &right_}) {
+    for (const ControlReportLine& l : d->controls().lines) {
+      lines.push_back({l.level, (d == &left_ ? "left " : "right ") + d->device() + ": " + l.text});
+    }
+  }
+  return lines;
 }
 
 void V4l2StereoCamera::close_devices() {
@@ -181,6 +199,7 @@ hal::GrabStatus V4l2StereoCamera::grab(hal::StereoFrame& frame) {
         frame.left_stamp = pair->left.stamp;
         frame.right_stamp = pair->right.stamp;
         frame.sequence = ++sequence_;
+        frame.exposure = exposure_;
         return hal::GrabStatus::ok;
       }
       ++stats_.conversion_errors;  // a corrupt MJPG frame: wait for the next pair

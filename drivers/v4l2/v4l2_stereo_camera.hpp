@@ -4,6 +4,7 @@
 
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include "drivers/camera_params.hpp"
 #include "drivers/v4l2/frame_pairing.hpp"
@@ -43,6 +44,8 @@ class V4l2StereoCamera final : public hal::StereoCamera {
   const V4l2CameraStats& stats() const { return stats_; }
   // Why the last grab was not ok (empty after an ok grab is not guaranteed).
   const std::string& last_error() const { return last_error_; }
+  // Both cameras' control lines as the last open set them ("left exposure: 4.0 ms set, ...").
+  std::vector<ControlReportLine> controls_report() const;
 
  private:
   bool open_devices(std::string& error);
@@ -61,6 +64,7 @@ class V4l2StereoCamera final : public hal::StereoCamera {
   bool opened_ = false;  // open() succeeded and close() was not called since
   bool streaming_ = false;
   std::uint64_t sequence_ = 0;
+  std::chrono::nanoseconds exposure_{0};  // read back at open; 0: unknown
   V4l2CameraStats stats_;
   std::string last_error_;
 };

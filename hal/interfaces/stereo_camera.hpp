@@ -14,6 +14,9 @@ struct StereoFrame {
   std::chrono::nanoseconds left_stamp{0};  // capture time, on the Clock the application runs on
   std::chrono::nanoseconds right_stamp{0};
   std::uint64_t sequence = 0;
+  // How long both images were exposed; 0 when not known (auto exposure, a replay).
+  std::chrono::nanoseconds exposure{0};
+  bool exposure_known() const { return exposure.count() > 0; }
 };
 
 enum class GrabStatus { ok, timeout, device_lost, end_of_stream };

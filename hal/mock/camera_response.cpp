@@ -2,6 +2,7 @@
 // 256-entry table built per frame: one lookup per byte.
 #include "hal/mock/camera_response.hpp"
 
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
 
@@ -22,6 +23,24 @@ void describe(ParamVisitor& v, ExposureDrift& e) {
   v.param("period_s", e.period_s, {"s", 0.1, 3600.0, "period of the drift"});
   v.param("phase_deg", e.phase_deg,
           {"deg", -360.0, 360.0, "phase at time 0 (0: geometric mean, rising)"});
+  v.param(
+      "auto_exposure_ms", e.auto_exposure_ms,
+      {"ms", 0.0, 1000.0,
+       "exposure time of the cameras' auto exposure in this dim water (with "
+       "camera.v4l2.auto_exposure true; false exposes camera.v4l2.exposure_time_us at gain 1)"});
+  v.param("vibration_deg", e.vibration_deg,
+          {"deg", 0.0, 10.0, "amplitude of the camera mount's vibration in yaw and pitch"});
+  v.param("vibration_hz", e.vibration_hz,
+          {"Hz", 0.0, 100.0, "frequency of the mount's yaw vibration (pitch: 1.37 times it)"});
+}
+
+Eigen::Matrix3d vibration_rotation(const ExposureDrift& e, double time_s) {
+  const double a = e.vibration_deg * M_PI / 180.0;
+  const double w = 2.0 * M_PI * e.vibration_hz * time_s;
+  const double yaw = a * std::sin(w), pitch = a * std::sin(1.37 * w + 1.0);
+  return (Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitY()) *
+          Eigen::AngleAxisd(pitch, Eigen::Vector3d::UnitX()))
+      .toRotationMatrix();
 }
 
 double exposure_gain(const ExposureDrift& e, double time_s) {

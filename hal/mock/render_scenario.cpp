@@ -46,7 +46,9 @@ void describe(ParamVisitor& v, ScenarioParams& p) {
             [&p](ParamVisitor& s) { describe(s, p.occluders); });
   v.section("noisy", "high sensor gain and lossy block compression",
             [&p](ParamVisitor& s) { describe(s, p.noisy); });
-  v.section("exposure", "an auto-exposure drifting between under- and over-exposure",
+  v.section("exposure",
+            "dim water and a vibrating camera mount: an auto exposure drifting between under- "
+            "and over-exposure and smearing the marker, or camera.v4l2's manual exposure",
             [&p](ParamVisitor& s) { describe(s, p.exposure); });
 }
 

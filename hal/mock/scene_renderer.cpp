@@ -280,6 +280,46 @@ void SceneRenderer::shade_rod(const Rod& rod, const Eigen::Vector3f& albedo,
 
 void SceneRenderer::render(const Eigen::Isometry3d& T_cam_marker, std::uint64_t noise_seed,
                            double time_s, cv::Mat& out_bgr) const {
+  draw_scene(T_cam_marker, time_s, out_bgr);
+  sense(noise_seed, time_s, out_bgr);
+}
+
+void SceneRenderer::render_exposed(const Eigen::Isometry3d* T_cam_marker, int count,
+                                   std::uint64_t noise_seed, double time_s, cv::Mat& out_bgr,
+                                   ExposureScratch& scratch) const {
+  if (count <= 1) {
+    render(T_cam_marker[0], noise_seed, time_s, out_bgr);
+    return;
+  }
+  // Averaged in 8-bit sRGB rather than linear light: a smeared sphere's colour fades a little
+  // faster along the smear than a real sensor's would, which errs against the estimator.
+  // Plain loops: OpenCV's add and convertTo allocated on every call here.
+  const int h = camera_.height_px, n = camera_.width_px * 3;
+  scratch.accumulator.create(h, camera_.width_px, CV_32FC3);
+  for (int v = 0; v < h; ++v) {
+    float* a = scratch.accumulator.ptr<float>(v);
+    std::fill(a, a + n, 0.0f);
+  }
+  for (int k = 0; k < count; ++k) {
+    draw_scene(T_cam_marker[k], time_s, scratch.view);
+    for (int v = 0; v < h; ++v) {
+      float* a = scratch.accumulator.ptr<float>(v);
+      const std::uint8_t* p = scratch.view.ptr<std::uint8_t>(v);
+      for (int i = 0; i < n; ++i) a[i] += p[i];
+    }
+  }
+  out_bgr.create(h, camera_.width_px, CV_8UC3);
+  const float scale = 1.0f / static_cast<float>(count);
+  for (int v = 0; v < h; ++v) {
+    const float* a = scratch.accumulator.ptr<float>(v);
+    std::uint8_t* o = out_bgr.ptr<std::uint8_t>(v);
+    for (int i = 0; i < n; ++i) o[i] = static_cast<std::uint8_t>(a[i] * scale + 0.5f);
+  }
+  sense(noise_seed, time_s, out_bgr);
+}
+
+void SceneRenderer::draw_scene(const Eigen::Isometry3d& T_cam_marker, double time_s,
+                               cv::Mat& out_bgr) const {
   out_bgr.create(camera_.height_px, camera_.width_px, CV_8UC3);
   FrameLighting lighting;
   if (turbid_) {
@@ -348,6 +388,10 @@ void SceneRenderer::render(const Eigen::Isometry3d& T_cam_marker, std::uint64_t 
         break;
     }
   }
+}
+
+void SceneRenderer::sense(std::uint64_t noise_seed, double time_s, cv::Mat& out_bgr) const {
+  const ScenarioParams& sp = scene_.params;
   // The sensor records the exposed light, then adds its noise; the encoder compresses last.
   if (exposure_) exposure_->apply(exposure_gain(sp.exposure, time_s), out_bgr);
   if (!noise_plus_.empty()) {
@@ -361,12 +405,15 @@ void SceneRenderer::render(const Eigen::Isometry3d& T_cam_marker, std::uint64_t 
   if (compression_) compression_->apply(out_bgr);
 }
 
+std::uint64_t right_noise_seed(std::uint64_t noise_seed) {
+  return splitmix64(noise_seed ^ 0xA5A5A5A5ull);
+}
+
 void render_stereo(const SceneRenderer& left, const SceneRenderer& right, const StereoRig& rig,
                    const Eigen::Isometry3d& T_cl_marker, std::uint64_t noise_seed, double time_s,
                    cv::Mat& left_bgr, cv::Mat& right_bgr) {
   left.render(T_cl_marker, noise_seed, time_s, left_bgr);
-  right.render(rig.T_cr_cl * T_cl_marker, splitmix64(noise_seed ^ 0xA5A5A5A5ull), time_s,
-               right_bgr);
+  right.render(rig.T_cr_cl * T_cl_marker, right_noise_seed(noise_seed), time_s, right_bgr);
 }
 
 void render_stereo(const SceneRenderer& left, const SceneRenderer& right, const StereoRig& rig,

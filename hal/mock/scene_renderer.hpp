@@ -33,6 +33,12 @@ struct RenderOptions {
 
 void describe(ParamVisitor& v, RenderOptions& options);
 
+// Working images of render_exposed(), kept by the caller so that a frame allocates nothing.
+struct ExposureScratch {
+  cv::Mat accumulator;  // CV_32FC3: the sum of the exposure's sub-frames
+  cv::Mat view;         // CV_8UC3: one sub-frame
+};
+
 class SceneRenderer {
  public:
   // The clear scenario.
@@ -54,11 +60,23 @@ class SceneRenderer {
     render(T_cam_marker, noise_seed, 0.0, out_bgr);
   }
 
+  // One exposure through which the marker moves: the sharp views at each of `count` poses
+  // (spread evenly over the exposure), averaged as the sensor integrates them, then the sensor's
+  // gain, noise and compression once. count 1 is render(). No heap allocation once out_bgr and
+  // the scratch images have the camera size.
+  void render_exposed(const Eigen::Isometry3d* T_cam_marker, int count, std::uint64_t noise_seed,
+                      double time_s, cv::Mat& out_bgr, ExposureScratch& scratch) const;
+
   const CameraModel& camera() const { return camera_; }
   Scenario scenario() const { return scene_.scenario; }
 
  private:
   struct FrameLighting;
+
+  // The light that reaches the sensor (scene, lighting, water), before the sensor's effects.
+  void draw_scene(const Eigen::Isometry3d& T_cam_marker, double time_s, cv::Mat& out_bgr) const;
+  // Gain, noise, compression: what the camera's electronics do to the exposed image.
+  void sense(std::uint64_t noise_seed, double time_s, cv::Mat& out_bgr) const;
 
   void shade_sphere(const MarkerSphere& sphere, const Eigen::Vector3d& centre_cam_m,
                     const FrameLighting& lighting, int self, cv::Mat& out_bgr) const;
@@ -81,6 +99,9 @@ class SceneRenderer {
   std::optional<ExposureResponse> exposure_;
   std::optional<BlockCompression> compression_;
 };
+
+// The right view's noise seed for a pair whose left view has `noise_seed`.
+std::uint64_t right_noise_seed(std::uint64_t noise_seed);
 
 // Both views of a rig: T_cr_marker = rig.T_cr_cl * T_cl_marker.
 void render_stereo(const SceneRenderer& left, const SceneRenderer& right, const StereoRig& rig,

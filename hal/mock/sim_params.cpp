@@ -168,7 +168,7 @@ void describe(ParamVisitor& v, SimParams& p) {
   v.param("scenario", p.scenario,
           "imaging conditions of the simulated cameras: clear water (default), turbid water, a "
           "side light with shadows, bubbles and particles, a passing occluder, a noisy "
-          "compressing sensor, or a drifting exposure",
+          "compressing sensor, or a drifting, smearing auto exposure on a vibrating mount",
           scenario_names());
   v.section("scenarios", "parameters of each imaging scenario (used when it is selected)",
             [&p](ParamVisitor& s) { describe(s, p.scenarios); });

@@ -64,6 +64,9 @@ struct CameraSimParams {
   // Exposure to delivery: the frame grab() returns shows the world this long ago.
   double latency_ms = 40.0;
   RenderOptions render;  // render.noise_sigma is replaced by each trial's image noise
+  // Not a key of its own: camera.v4l2's manual exposure time (auto_exposure false), so that one
+  // setting exposes the rig's cameras and the simulated ones; 0: the cameras' auto exposure.
+  double exposure_ms = 0.0;
 };
 
 void describe(ParamVisitor& v, CameraSimParams& p);

@@ -125,5 +125,28 @@ TEST(StereoCalibration, BadFilesNameFileAndKey) {
   EXPECT_NE(error_of(not_matrix).find("D1"), std::string::npos);
 }
 
+// What every command accepted before the loader checked the matrix's pattern and which side the
+// right camera is on; each is refused naming the file, the key's line and what is wrong.
+TEST(StereoCalibration, RefusesAGeometryNoCameraHas) {
+  const std::string skewed = temp_file(
+      "k10.yaml", replaced(kGood, "[ 500., 0., 320., 0., 500.", "[ 500., 0., 320., 300., 500."));
+  EXPECT_NE(error_of(skewed).find(skewed + ":4: key 'K1': K(1,0) = 300"), std::string::npos)
+      << error_of(skewed);
+  const std::string swapped =
+      temp_file("swapped.yaml", replaced(kGood, "[ -0.178, 0., 0. ]", "[ 0.178, 0., 0. ]"));
+  EXPECT_NE(error_of(swapped).find(swapped + ":29: key 'T'"), std::string::npos)
+      << error_of(swapped);
+  EXPECT_NE(error_of(swapped).find("to the LEFT of the left one"), std::string::npos);
+  const std::string forward =
+      temp_file("forward.yaml", replaced(kGood, "[ -0.178, 0., 0. ]", "[ 0., 0., 0.2 ]"));
+  EXPECT_NE(error_of(forward).find(forward + ":29: key 'T'"), std::string::npos)
+      << error_of(forward);
+  EXPECT_NE(error_of(forward).find("side by side"), std::string::npos);
+  // A rig tilted or toed in but still side by side stays accepted (the shipped one is toed in).
+  EXPECT_EQ(error_of(temp_file("toe.yaml",
+                               replaced(kGood, "[ -0.178, 0., 0. ]", "[ -0.17, 0.02, 0.03 ]"))),
+            "");
+}
+
 }  // namespace
 }  // namespace rovctl::estimator

@@ -124,6 +124,29 @@ TEST(ConfigValidation, TheBusIsReportedDegradedBeforeTheWatchdogStopsIt) {
   EXPECT_EQ(error_of(fine), "");
 }
 
+TEST(ConfigValidation, TheCameraExposureFitsTheFramePeriodAndATemperatureNeedsTheLock) {
+  const TempDir t;
+  const std::string slow =
+      t.write("slow.yaml", "calibration: " + kCalibration +
+                               "\ncamera:\n  v4l2:\n    fps: 30\n    auto_exposure: false\n"
+                               "    exposure_time_us: 40000\n");
+  EXPECT_EQ(error_of(slow), slow +
+                                ":6: camera.v4l2.exposure_time_us: 40000 us does not fit in the "
+                                "frame period at camera.v4l2.fps 30 (33333 us)");
+  // Auto exposure ignores the time: no error.
+  const std::string automatic =
+      t.write("auto.yaml", "calibration: " + kCalibration +
+                               "\ncamera:\n  v4l2:\n    fps: 30\n    exposure_time_us: 40000\n");
+  EXPECT_EQ(error_of(automatic), "");
+  const std::string temperature = t.write(
+      "temperature.yaml", "calibration: " + kCalibration +
+                              "\ncamera:\n  v4l2:\n    white_balance_temperature_k: 5000\n");
+  EXPECT_EQ(error_of(temperature),
+            temperature +
+                ":4: camera.v4l2.white_balance_temperature_k: needs camera.v4l2.white_balance "
+                "lock (auto white balance ignores it)");
+}
+
 TEST(ConfigValidation, TheArdusubLinkAndAckTimeoutAreCheckedAtTheirLine) {
   const TempDir t;
   const std::string link = t.write("link.yaml", "calibration: " + kCalibration +

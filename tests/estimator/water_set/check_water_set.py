@@ -199,7 +199,7 @@ def check_manifest(folder):
             errors.append("%s: q_cl_marker_wxyz is not a unit quaternion" % where)
         if not isinstance(p.get("notes"), str):
             errors.append("%s: no notes" % where)
-    missing = [c for c in gen.CONDITIONS if c not in seen]
+    missing = [c for c in gen.DEFAULT_CONDITIONS if c not in seen]
     if missing:
         errors.append("no pairs for: %s" % ", ".join(missing))
     print("sample manifest %s: %d pairs, %d conditions" % (path, len(pairs), len(seen)))

@@ -47,7 +47,13 @@ PLATE_Z = 0.05
 SEABED_Y = 0.60
 
 CONDITIONS = ["clear", "turbid_near", "turbid_far", "side_light", "bubbles", "occlusion", "edge",
-              "noise_jpeg", "distortion", "overexposed", "underexposed", "motion_blur"]
+              "noise_jpeg", "distortion", "overexposed", "underexposed", "motion_blur", "cast"]
+# Rendered only when named (--conditions): not part of the validation set the docs' figures are read on.
+ON_DEMAND_CONDITIONS = ["cast"]
+DEFAULT_CONDITIONS = [c for c in CONDITIONS if c not in ON_DEMAND_CONDITIONS]
+# Conditions that draw their poses (and every other random draw) as another condition does, so their pairs
+# are that condition's pairs in other water: `cast` pair i of seed s is `clear` pair i of seed s.
+POSE_TWIN = {"cast": "clear"}
 
 # Jerlov (1976) Marine Optics, Table XXVII: downwelling diffuse attenuation Kd (1/m) at 450..650 nm in
 # 25 nm steps. Camera channels are taken as band means: B 450-500, G 525-575, R 600-650 nm.
@@ -68,9 +74,16 @@ def jerlov_rgb(water_type):
 # Water per condition: attenuation per channel from Jerlov; b_inf = radiance of open water at infinity
 # (linear RGB, in units of lamp-lit white), which the veil approaches with range; ambient = downwelling
 # light, already tinted by the water column above the station. b_inf and ambient are our choices.
+CAST_EXTINCTION_RGB = (0.54, 0.24, 0.95)
 WATERS = {
     "clear": {"jerlov": "II", "b_inf": (0.004, 0.030, 0.050), "ambient": (0.10, 0.15, 0.17)},
     "coastal": {"jerlov": "5C", "b_inf": (0.050, 0.220, 0.170), "ambient": (0.07, 0.14, 0.12)},
+    # Not a Jerlov type: green, algae-laden lake or harbour water. Chlorophyll absorbs blue and red, so
+    # green carries furthest and the veil is yellow-green; the extinction is given directly (1/m, R G B).
+    # The shipped hue windows were chosen in clear water; in this one the blue sphere turns cyan and the
+    # red one orange, out of those windows (the `cast` condition, for `rovctl tune-marker`).
+    "green_cast": {"jerlov": "none (algal lake)", "extinction": CAST_EXTINCTION_RGB,
+                   "b_inf": (0.055, 0.110, 0.022), "ambient": (0.098, 0.158, 0.052)},
 }
 
 # Linear renders are made this much darker than the scene so highlights up to 1/HEADROOM survive the
@@ -79,6 +92,9 @@ HEADROOM = 0.25
 # The camera's nominal exposure: lamp-lit white would sit near 1.0, the lit plate near 0.2 and the
 # brightest sphere channel near 0.5-0.8. The exposure conditions multiply this.
 BASE_EXPOSURE = 1.3
+# POV-Ray renders at this multiple of the real sampling, with this many lamp samples per axis; --draft
+# lowers both (1x, 2x2) for sets that need many pairs more than the finest shading.
+RENDER = {"ideal_scale": 2.0, "lamp_samples": 4}
 SUPERSAMPLE = 3  # sub-samples per axis and real pixel when mapping the ideal render into the real camera
 OVERHEAD_LAMP = (0.25, -1.4, -0.55)  # marker frame, above and in front of the station
 SIDE_LIGHT_PATH = 1.0  # metres of water the side light crosses before the station
@@ -524,8 +540,9 @@ def scene_pov(iv, pose, spec, mode):
         if ov > 0:
             lamp = np.array(OVERHEAD_LAMP)
             tint = np.exp(-ext * np.linalg.norm(lamp))
-            objs.append("light_source { %s color %s area_light <0.9,0,0>, <0,0,0.9>, 4, 4 adaptive 0 jitter "
-                        "circular orient }" % (pv(lamp), rgb(tint * ov * H)))
+            objs.append("light_source { %s color %s area_light <0.9,0,0>, <0,0,0.9>, %d, %d adaptive 0 "
+                        "jitter circular orient }" % (pv(lamp), rgb(tint * ov * H), RENDER["lamp_samples"],
+                                                     RENDER["lamp_samples"]))
         if "side_light" in spec:
             sl = spec["side_light"]
             tint = np.exp(-ext * SIDE_LIGHT_PATH)
@@ -563,8 +580,12 @@ def povray_render(sdl, iv, workdir, tag, quality):
     aa = ["+A0.002", "+AM2", "+R3"] if quality == "mask" else ["-A"]
     cmd = ["povray", "+I" + pov, "+O" + ppm, "+W%d" % iv.Wi, "+H%d" % iv.Hi, "-J", "+WT1", "-D", "-P",
            "+Q9", "Output_File_Type=P", "Bits_Per_Color=16", "File_Gamma=1.0", "-V", "-GS", "-GR"] + aa
-    res = subprocess.run(cmd, cwd=workdir, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
-    img = cv2.imread(ppm, cv2.IMREAD_UNCHANGED)
+    # On a loaded machine POV-Ray now and then gives up "waiting for worker thread startup": try again.
+    for _attempt in range(3):
+        res = subprocess.run(cmd, cwd=workdir, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+        img = cv2.imread(ppm, cv2.IMREAD_UNCHANGED) if res.returncode == 0 else None
+        if img is not None or "worker thread startup" not in res.stderr:
+            break
     if res.returncode != 0 or img is None:
         raise RuntimeError("povray failed for %s (exit %d):\n%s" % (pov, res.returncode, res.stderr[-3000:]))
     os.remove(ppm)
@@ -574,7 +595,7 @@ def povray_render(sdl, iv, workdir, tag, quality):
 
 def render_view(cam, pose, spec, workdir, tag, motion=None):
     """Linear BGR image of one view in the real distorted camera, scene units (1.0 = lamp-lit white)."""
-    iv = cam.ideal(2.0, MOTION_MARGIN if motion else 0)
+    iv = cam.ideal(RENDER["ideal_scale"], MOTION_MARGIN if motion else 0)
     J = povray_render(scene_pov(iv, pose, spec, "beauty"), iv, workdir, tag + "_j", "beauty") / HEADROOM
     T = povray_render(scene_pov(iv, pose, spec, "transmittance"), iv, workdir, tag + "_t", "beauty")
     binf = np.asarray(spec["water"]["b_inf"], np.float32)[::-1]  # BGR
@@ -622,7 +643,7 @@ def motion_blur(iv, lin, T, ext, motion):
 
 
 def render_mask(cam, pose, spec, workdir, tag, with_bars):
-    iv = cam.ideal(2.0)
+    iv = cam.ideal(RENDER["ideal_scale"])
     return iv.to_real(povray_render(scene_pov(iv, pose, spec, "mask_with" if with_bars else "mask_without"), iv,
                                     workdir, tag, "mask"))
 
@@ -669,7 +690,8 @@ def yuyv_round_trip(img):
 
 def water(name):
     w = dict(WATERS[name])
-    w["extinction"] = jerlov_rgb(w["jerlov"])
+    if "extinction" not in w:
+        w["extinction"] = jerlov_rgb(w["jerlov"])
     return w
 
 
@@ -699,6 +721,11 @@ def cond_turbid_near(rig, rng, index):
 def cond_turbid_far(rig, rng, index):
     pose, spec, post, extra, notes = cond_standard(rig, rng, 0.8, 1.5, "coastal")
     return pose, spec, post, extra, notes + "; Jerlov 5C water"
+
+
+def cond_cast(rig, rng, index):
+    pose, spec, post, extra, notes = cond_standard(rig, rng, 0.3, 1.5, "green_cast")
+    return pose, spec, post, extra, notes + "; green algal water (strong colour cast)"
 
 
 def cond_side_light(rig, rng, index):
@@ -957,7 +984,7 @@ CONDITION_BUILDERS = {
     "clear": cond_clear, "turbid_near": cond_turbid_near, "turbid_far": cond_turbid_far,
     "side_light": cond_side_light, "bubbles": cond_bubbles, "occlusion": cond_occlusion, "edge": cond_edge,
     "noise_jpeg": cond_noise_jpeg, "distortion": cond_distortion, "overexposed": cond_overexposed,
-    "underexposed": cond_underexposed, "motion_blur": cond_motion_blur,
+    "underexposed": cond_underexposed, "motion_blur": cond_motion_blur, "cast": cond_cast,
 }
 
 
@@ -966,7 +993,7 @@ CONDITION_BUILDERS = {
 
 
 def pair_rng(seed, condition, index):
-    return np.random.default_rng([int(seed), CONDITIONS.index(condition), int(index)])
+    return np.random.default_rng([int(seed), CONDITIONS.index(POSE_TWIN.get(condition, condition)), int(index)])
 
 
 def make_pair(rig, condition, index, seed, out_dir, pose_override=None, stream=None):
@@ -989,7 +1016,8 @@ def make_pair(rig, condition, index, seed, out_dir, pose_override=None, stream=N
     if pose_override is not None:
         pose = pose_override
         notes = "pose given by the caller"
-    noise_rng = np.random.default_rng([int(seed), CONDITIONS.index(condition), int(index), 7])
+    noise_rng = np.random.default_rng([int(seed), CONDITIONS.index(POSE_TWIN.get(condition, condition)), int(index),
+                                       7])
     entry = {"condition": condition}
     os.makedirs(os.path.join(out_dir, condition), exist_ok=True)
     # Debian's povray.conf lets POV-Ray write only under /tmp.
@@ -1084,8 +1112,8 @@ def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--out", required=True, help="output folder")
     ap.add_argument("--pairs-per-condition", type=int, default=30)
-    ap.add_argument("--conditions", default=",".join(CONDITIONS), help="comma-separated subset of: "
-                    + ", ".join(CONDITIONS))
+    ap.add_argument("--conditions", default=",".join(DEFAULT_CONDITIONS), help="comma-separated subset of: "
+                    + ", ".join(CONDITIONS) + " (default: all but " + ", ".join(ON_DEMAND_CONDITIONS) + ")")
     ap.add_argument("--seed", type=int, default=1)
     ap.add_argument("--jobs", type=int, default=2, help="pairs rendered at once (one POV-Ray thread each)")
     ap.add_argument("--calibration", default=DEFAULT_CALIBRATION)
@@ -1096,7 +1124,11 @@ def main(argv=None):
                     "stream alone costs")
     ap.add_argument("--resume", action="store_true", help="keep the pairs an earlier run of the same seed "
                     "already wrote to --out (pairs are deterministic per seed, condition and index)")
+    ap.add_argument("--draft", action="store_true", help="render at the real sampling with 2x2 lamp samples "
+                    "(about 4x cheaper; softer sphere rims, noisier lamp shadows)")
     args = ap.parse_args(argv)
+    if args.draft:
+        RENDER.update(ideal_scale=1.0, lamp_samples=2)
 
     if shutil.which("povray") is None:
         raise SystemExit("povray not found (Debian package 'povray')")
@@ -1106,7 +1138,7 @@ def main(argv=None):
         raise SystemExit("unknown condition(s): %s" % ", ".join(bad))
     rig = Rig(args.calibration)
     for cam in rig.cams:
-        cam.ideal(2.0)
+        cam.ideal(RENDER["ideal_scale"])
     os.makedirs(args.out, exist_ok=True)
 
     # Index-major, so a run stopped early covers every condition evenly.

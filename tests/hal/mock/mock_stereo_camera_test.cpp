@@ -110,5 +110,84 @@ TEST_F(CameraFixture, InjectedCameraLossAndDrops) {
   EXPECT_LT(timeouts, 35);
 }
 
+// The left image of the frame at 200 ms of a turning vehicle, exposed for `exposure_ms` (0: sharp).
+template <class Fixture>
+cv::Mat turning_frame(Fixture& f, double exposure_ms, std::chrono::nanoseconds& exposure) {
+  f.start_turning();
+  CameraSimParams p = f.params.camera;
+  p.exposure_ms = exposure_ms;
+  MockStereoCamera camera(f.world, f.rig, f.marker, p, FaultInjection{}, 11);
+  std::string error;
+  EXPECT_TRUE(camera.open(error));
+  f.world.step_to(milliseconds(200));
+  StereoFrame frame;
+  EXPECT_EQ(camera.grab(frame), GrabStatus::ok);
+  exposure = frame.exposure;
+  return frame.left_bgr.clone();
+}
+
+int pixels_changed(const cv::Mat& a, const cv::Mat& b) {
+  cv::Mat diff, grey;
+  cv::absdiff(a, b, diff);
+  cv::Mat channels[3];
+  cv::split(diff, channels);
+  grey = cv::max(channels[0], cv::max(channels[1], channels[2]));
+  return cv::countNonZero(grey > 20);
+}
+
+TEST_F(CameraFixture, AManualExposureSmearsByItsLengthAndTheFrameCarriesIt) {
+  std::chrono::nanoseconds exposure{};
+  const cv::Mat sharp = turning_frame(*this, 0.0, exposure);
+  EXPECT_FALSE(StereoFrame{}.exposure_known());
+  EXPECT_EQ(exposure.count(), 0);  // sharp: no exposure the frame could claim
+  // 0.3 rad/s of yaw: under a pixel through 0.5 ms, a streak of several through 30 ms.
+  const cv::Mat short_exposure = turning_frame(*this, 0.5, exposure);
+  EXPECT_EQ(exposure, std::chrono::microseconds(500));
+  EXPECT_EQ(pixels_changed(sharp, short_exposure), 0);
+  const cv::Mat long_exposure = turning_frame(*this, 30.0, exposure);
+  EXPECT_EQ(exposure, milliseconds(30));
+  const cv::Mat longer_exposure = turning_frame(*this, 60.0, exposure);
+  const int smeared = pixels_changed(sharp, long_exposure);
+  EXPECT_GT(smeared, 50);
+  EXPECT_GT(pixels_changed(sharp, longer_exposure), smeared);
+}
+
+SimParams exposure_scenario_params() {
+  SimParams p = test::still_water_params();
+  p.scenario = "exposure";
+  return p;
+}
+
+struct ExposureScenarioFixture : CameraFixture {
+  SimParams exposure_params = exposure_scenario_params();
+  SimulatedWorld exposure_world{exposure_params, VehicleGeometry{}, DockingStation{}};
+};
+
+TEST_F(ExposureScenarioFixture, SmearsItsAutoExposureWithoutTellingTheFrame) {
+  std::chrono::nanoseconds exposure{};
+  MockStereoCamera auto_camera(exposure_world, rig, marker, params.camera, FaultInjection{}, 11);
+  EXPECT_EQ(auto_camera.exposure(), milliseconds(33));
+  EXPECT_FALSE(auto_camera.exposure_known());
+  CameraSimParams manual = params.camera;
+  manual.exposure_ms = 4.0;
+  MockStereoCamera capped(exposure_world, rig, marker, manual, FaultInjection{}, 11);
+  EXPECT_EQ(capped.exposure(), milliseconds(4));
+  EXPECT_TRUE(capped.exposure_known());
+  std::string error;
+  ASSERT_TRUE(auto_camera.open(error));
+  ASSERT_TRUE(capped.open(error));
+  exposure_world.step_to(milliseconds(200));
+  StereoFrame a, c;
+  ASSERT_EQ(auto_camera.grab(a), GrabStatus::ok);
+  ASSERT_EQ(capped.grab(c), GrabStatus::ok);
+  EXPECT_EQ(a.exposure.count(), 0);
+  EXPECT_EQ(c.exposure, milliseconds(4));
+  // The same vibrating mount: the truth turns with it, the same in both.
+  EXPECT_TRUE(auto_camera.last_T_cl_marker_truth().isApprox(capped.last_T_cl_marker_truth()));
+  EXPECT_FALSE(auto_camera.last_T_cl_marker_truth().isApprox(
+      exposure_world.T_cl_marker_at(milliseconds(160)), 1e-6));
+  (void)exposure;
+}
+
 }  // namespace
 }  // namespace rovctl::hal::mock

@@ -54,6 +54,27 @@ TEST_P(SceneRendererAllocation, RenderAllocatesNothingAfterStartUp) {
       << "heap allocations in 100 stereo renders of scenario " << to_string(GetParam());
 }
 
+// A smeared exposure averages its sub-frames in scratch images the caller keeps.
+TEST_P(SceneRendererAllocation, ASmearedExposureAllocatesNothingAfterStartUp) {
+  if (!malloc_hooks_installed()) GTEST_SKIP() << "AddressSanitizer owns malloc: no counting hooks";
+  const StereoRig rig = make_parallel_rig(CameraModel{}, 0.178, 0.03);
+  SceneConditions scene;
+  scene.scenario = GetParam();
+  scene.seed = 7;
+  const SceneRenderer left(rig.left, MarkerModel::standard(), RenderOptions{}, scene);
+  Eigen::Isometry3d poses[8];
+  for (int k = 0; k < 8; ++k) {
+    poses[k] = make_pose({0.005 * k, 0.0, 1.0}, Eigen::Quaterniond::Identity());
+  }
+  cv::Mat out;
+  ExposureScratch scratch;
+  left.render_exposed(poses, 8, 1, 0.0, out, scratch);
+  const std::uint64_t before = t_allocations;
+  for (int i = 0; i < 20; ++i) left.render_exposed(poses, 8, 2 + i, 0.1 * i, out, scratch);
+  EXPECT_EQ(t_allocations - before, 0u)
+      << "heap allocations in 20 smeared renders of scenario " << to_string(GetParam());
+}
+
 INSTANTIATE_TEST_SUITE_P(EveryScenario, SceneRendererAllocation,
                          ::testing::Values(Scenario::clear, Scenario::turbid, Scenario::side_light,
                                            Scenario::bubbles, Scenario::occluders, Scenario::noisy,
