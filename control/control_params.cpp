@@ -17,6 +17,10 @@ void describe(hal::ParamVisitor& v, DisturbanceParams& p) {
   v.param("beyond_hold_s", p.beyond_hold_s,
           {"s", 0.1, 600.0,
            "at its limit or with the thrusters saturated this long: current beyond hold"});
+  v.param("swept_fraction", p.swept_fraction,
+          {"-", 0.0, 1.0,
+           "share of its limit the still rising estimate must reach for a marker lost to count "
+           "toward mission.beyond_hold_losses"});
 }
 
 void describe(hal::ParamVisitor& v, ServoParams& p) {
@@ -290,6 +294,10 @@ void describe(hal::ParamVisitor& v, MissionParams& p) {
            "station, which searches at once"});
   v.param("max_retries", p.max_retries,
           {"-", 0, 100, "aborts allowed; one more and the mission fails"});
+  v.param("beyond_hold_losses", p.beyond_hold_losses,
+          {"-", 1, 100,
+           "markers lost before the dock while the current's estimate was still rising toward "
+           "the push (since it last settled in view) that make the current beyond hold"});
 }
 
 }  // namespace rovctl::control

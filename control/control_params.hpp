@@ -24,6 +24,9 @@ struct DisturbanceParams {
   double rate_cutoff_hz = 0.5;
   // Beyond hold: a horizontal axis at its limit, or the thrusters saturated, for this long.
   double beyond_hold_s = 4.0;
+  // A marker lost while the estimate is still rising counts toward mission.beyond_hold_losses
+  // once the estimate has reached this share of its limit.
+  double swept_fraction = 0.3;
 };
 
 void describe(hal::ParamVisitor& v, DisturbanceParams& p);
@@ -284,6 +287,9 @@ struct MissionParams {
   double abort_backoff_force_n = 15.0;
   double abort_backoff_s = 3.0;
   int max_retries = 3;  // aborts after which the mission fails
+  // Markers lost in APPROACH or ALIGN while the current's estimate was still rising (since it
+  // last settled in view) after which the current counts as beyond hold: FAILED.
+  int beyond_hold_losses = 2;
 };
 
 void describe(hal::ParamVisitor& v, MissionParams& p);

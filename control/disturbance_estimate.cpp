@@ -26,6 +26,7 @@ void DisturbanceEstimate::reset() {
   settled_for_s_ = 0.0;
   at_limit_for_s_ = 0.0;
   hold_ratio_ = 0.0;
+  rising_ = false;
 }
 
 void DisturbanceEstimate::set_axis(int axis, double value) {
@@ -60,7 +61,6 @@ void DisturbanceEstimate::integrate(const Vector6d& error, double dt_s, bool sat
   const double alpha = 1.0 - std::exp(-2.0 * M_PI * p_.rate_cutoff_hz * dt_s);
   rate_body_nps_ += alpha * (rate - rate_body_nps_);
   rate_nps_ = rate_body_nps_.norm();
-  settled_for_s_ = rate_nps_ < p_.settle_rate_nps ? settled_for_s_ + dt_s : 0.0;
 
   // Against the limit along the force's own direction: the box of per-axis limits, scaled.
   double ratio = 0.0;
@@ -70,6 +70,16 @@ void DisturbanceEstimate::integrate(const Vector6d& error, double dt_s, bool sat
   hold_ratio_ = ratio;
   const bool at_limit = ratio >= 0.98;
   at_limit_for_s_ = (at_limit || saturated) ? at_limit_for_s_ + dt_s : 0.0;
+
+  // An estimate stopped by its limit or by the thrusters' saturation changes no more, but it has
+  // not found the push: it is not settled, and it stays rising until it settles.
+  const bool slow = rate_nps_ < p_.settle_rate_nps && at_limit_for_s_ == 0.0;
+  settled_for_s_ = slow ? settled_for_s_ + dt_s : 0.0;
+  const double force_n = wrench_.head<2>().norm();
+  const bool growing =
+      force_n > 0.0 && rate_body_nps_.dot(wrench_.head<2>()) / force_n > p_.settle_rate_nps;
+  if (growing || at_limit_for_s_ > 0.0) rising_ = true;
+  if (settled()) rising_ = false;
 }
 
 }  // namespace rovctl::control

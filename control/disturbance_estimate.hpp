@@ -41,13 +41,19 @@ class DisturbanceEstimate {
 
   // The estimate: the wrench the servo adds to cancel the push (N, N m, body axes).
   const Vector6d& wrench_body() const { return wrench_; }
-  // Its horizontal force has changed by less than settle_rate_nps for settle_s.
+  // Its horizontal force has changed by less than settle_rate_nps for settle_s, off its limit
+  // and with the thrusters unsaturated.
   bool settled() const { return settled_for_s_ >= p_.settle_s; }
   // A horizontal axis has been at its limit (or the thrusters saturated) for beyond_hold_s: the
   // current pushes harder than the vehicle may push back.
   bool beyond_hold() const { return at_limit_for_s_ >= p_.beyond_hold_s; }
   // At its limit (or the thrusters saturated) at the last update.
   bool at_limit() const { return at_limit_for_s_ > 0.0; }
+  // Still rising toward a strong push: its horizontal force grew along itself faster than
+  // settle_rate_nps, or stopped at its limit or with the thrusters saturated, and it has not
+  // settled since; and it has reached swept_fraction of its limit (a current that sweeps the
+  // marker from view leaves it so; a weak one's estimate stays far under its limit).
+  bool rising() const { return rising_ && hold_ratio_ >= p_.swept_fraction; }
   // The horizontal force's magnitude against the limit along its direction (0..1).
   double hold_ratio() const { return hold_ratio_; }
   // The horizontal force's rate of change from the integration (not the turns), low-passed
@@ -66,6 +72,7 @@ class DisturbanceEstimate {
   double settled_for_s_ = 0.0;
   double at_limit_for_s_ = 0.0;
   double hold_ratio_ = 0.0;
+  bool rising_ = false;
 };
 
 }  // namespace rovctl::control

@@ -158,7 +158,10 @@ bool Mission::beyond_hold(const Sight& s) {
 
 void Mission::lost_before_dock(const Sight& s) {
   const std::chrono::nanoseconds now = s.in.now;
-  if (s.in.disturbance_at_limit) {
+  // A current the thrusters cannot hold sweeps the marker from view before the estimate reaches
+  // its limit (0.8 m/s across takes it out of view in 3-4 s); it does so again on every retry.
+  if (s.in.disturbance_rising) ++swept_losses_;
+  if (s.in.disturbance_at_limit || swept_losses_ >= p_.beyond_hold_losses) {
     enter(MissionState::failed, now, "current beyond hold");
     return;
   }
@@ -173,6 +176,7 @@ void Mission::lost_before_dock(const Sight& s) {
 
 void Mission::restart(std::chrono::nanoseconds now, const char* reason) {
   aborts_ = 0;
+  swept_losses_ = 0;
   search_timed_out_ = false;
   enter(MissionState::search, now, reason);
   started_ = true;
@@ -268,6 +272,9 @@ void Mission::from_search(const Sight& s) {
 void Mission::from_approach(const Sight& s) {
   const Errors& err = s.err;
   if (beyond_hold(s)) return;
+  // Settled with the marker in view: the thrusters hold this current, so earlier losses while
+  // the estimate was rising were not its doing.
+  if (s.seen && s.in.disturbance_settled && !s.in.disturbance_rising) swept_losses_ = 0;
   if (s.lost) {
     lost_before_dock(s);
   } else if (s.t_state > p_.approach_timeout_s) {
@@ -304,6 +311,9 @@ void Mission::from_align(const Sight& s) {
   // still learning the push is a vehicle passing through, not one held there.
   hold_frames_ = within && s.in.disturbance_settled ? hold_frames_ + 1 : 0;
   if (beyond_hold(s)) return;
+  // Settled with the marker in view: the thrusters hold this current, so earlier losses while
+  // the estimate was rising were not its doing.
+  if (s.seen && s.in.disturbance_settled && !s.in.disturbance_rising) swept_losses_ = 0;
   if (s.lost) {
     lost_before_dock(s);
   } else if (hold_frames_ >= p_.align_hold_frames) {

@@ -56,6 +56,7 @@ struct MissionInput {
   // counts only settled frames), at its limit now, and beyond what the thrusters may hold.
   bool disturbance_settled = true;
   bool disturbance_at_limit = false;
+  bool disturbance_rising = false;  // still growing toward the push
   bool current_beyond_hold = false;
 };
 
@@ -195,7 +196,9 @@ class Mission {
   void undock_outputs(const Sight& s, MissionOutput& out) const;
   void enter(MissionState to, std::chrono::nanoseconds now, const char* reason);
   // APPROACH or ALIGN lost the marker: an abort that searches at once, without backing off;
-  // lost while the current's estimate was at its limit, the current swept it away: FAILED.
+  // lost while the current's estimate was at its limit, or for the
+  // mission.beyond_hold_losses-th time while it was still rising toward the push, the current
+  // swept it away: FAILED.
   void lost_before_dock(const Sight& s);
   // The current pushes harder than the thrusters may hold: no retry can succeed, so FAILED
   // (thrusters neutral) rather than an abort that would search and approach again.
@@ -215,6 +218,9 @@ class Mission {
   bool started_ = false;
   bool servo_was_active_ = false;
   int aborts_ = 0;
+  // Markers lost in APPROACH or ALIGN while the current's estimate was still rising toward the
+  // push, since it last settled with the marker in view.
+  int swept_losses_ = 0;
   int seen_frames_ = 0;
   int unseen_frames_ = 0;
   int partial_frames_ = 0;  // consecutive frames recognised on a partial view

@@ -17,8 +17,9 @@ constexpr MissionExit kApproachExits[] = {
     {"the marker unseen `mission.lost_frames` frames (an abort that searches from where it is)",
      S::abort, "marker lost"},
     {"the current's estimate at its limit (`control.servo.disturbance.hold_fraction` of the "
-     "thrusters) or the thrusters saturated for `control.servo.disturbance.beyond_hold_s`, or the "
-     "marker lost while it was at its limit",
+     "thrusters) or the thrusters saturated for `control.servo.disturbance.beyond_hold_s`; or the "
+     "marker lost while it was at its limit, or lost for the `mission.beyond_hold_losses`-th time "
+     "while it was still rising toward the push",
      S::failed, "current beyond hold"},
     {"`mission.approach_timeout_s` passed", S::abort, "approach timed out"},
     {"the probe within `mission.approach_lateral_m`, `mission.approach_axial_m`, "
@@ -37,8 +38,9 @@ constexpr MissionExit kAlignExits[] = {
      "(`control.servo.disturbance.settle_rate_nps` for `control.servo.disturbance.settle_s`)",
      S::dock, "aligned"},
     {"the current's estimate at its limit (`control.servo.disturbance.hold_fraction` of the "
-     "thrusters) or the thrusters saturated for `control.servo.disturbance.beyond_hold_s`, or the "
-     "marker lost while it was at its limit",
+     "thrusters) or the thrusters saturated for `control.servo.disturbance.beyond_hold_s`; or the "
+     "marker lost while it was at its limit, or lost for the `mission.beyond_hold_losses`-th time "
+     "while it was still rising toward the push",
      S::failed, "current beyond hold"},
     {"`mission.align_timeout_s` passed, the current's estimate settled", S::abort,
      "align timed out"},

@@ -277,6 +277,7 @@ void VehicleLoop::mission_input(TickState& t) {
   const control::DisturbanceEstimate& current = servo_.disturbance();
   in.disturbance_settled = current.settled();
   in.disturbance_at_limit = current.at_limit();
+  in.disturbance_rising = current.rising();
   in.current_beyond_hold = current.beyond_hold();
   in.undock_requested = undock_requested_.load(std::memory_order_relaxed);
   in.now = t.now;

@@ -117,5 +117,33 @@ TEST(DisturbanceEstimate, BeyondHoldAfterItsTimeAtTheLimit) {
   EXPECT_TRUE(d.beyond_hold());
 }
 
+TEST(DisturbanceEstimate, RisesUntilItSettlesOncePastItsSweptFraction) {
+  DisturbanceParams p;
+  p.settle_s = 1.0;
+  p.swept_fraction = 0.3;
+  DisturbanceEstimate d(gains(), limits(), p);
+  // Growing along itself, but still under 30 % of its 50 N limit: not counted.
+  for (int k = 0; k < 30; ++k) d.integrate(along(1, 0.5), 1.0 / 30.0, false);
+  EXPECT_LT(d.hold_ratio(), 0.3);
+  EXPECT_FALSE(d.rising());
+  // Past it and still growing.
+  for (int k = 0; k < 90; ++k) d.integrate(along(1, 0.5), 1.0 / 30.0, false);
+  EXPECT_GT(d.hold_ratio(), 0.3);
+  EXPECT_TRUE(d.rising());
+  // Stopped by saturated thrusters: it no longer grows, yet has not found the push.
+  for (int k = 0; k < 120; ++k) d.integrate(along(1, 0.5), 1.0 / 30.0, true);
+  EXPECT_LT(d.rate_nps(), 0.1);
+  EXPECT_TRUE(d.rising());
+  // The thrusters hold it: the error gone, it settles and no longer rises.
+  for (int k = 0; k < 150 && !d.settled(); ++k) d.integrate(Vector6d::Zero(), 1.0 / 30.0, false);
+  EXPECT_TRUE(d.settled());
+  EXPECT_FALSE(d.rising());
+  // Held at its limit: not settled, and rising.
+  d.set_axis(1, 50.0);
+  for (int k = 0; k < 90; ++k) d.integrate(along(1, 0.1), 1.0 / 30.0, false);
+  EXPECT_FALSE(d.settled());
+  EXPECT_TRUE(d.rising());
+}
+
 }  // namespace
 }  // namespace rovctl::control

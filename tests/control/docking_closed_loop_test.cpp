@@ -146,6 +146,7 @@ TrialResult run_trial(std::uint64_t seed, double current_mps, const TrialStart* 
     in.contact = contact;
     in.disturbance_settled = servo.disturbance().settled();
     in.disturbance_at_limit = servo.disturbance().at_limit();
+    in.disturbance_rising = servo.disturbance().rising();
     in.current_beyond_hold = servo.disturbance().beyond_hold();
     const MissionOutput out = mission.update(in);
     MissionEvent e;
@@ -253,7 +254,9 @@ TEST(DockingClosedLoop, KeepsTheMarkerInViewFromFarOffTheAxis) {
 
 // A current the thrusters cannot hold (0.8 m/s across the docking axis; the BlueROV2 Heavy holds
 // about 0.6 m/s sideways): the mission ends FAILED "current beyond hold" in bounded time, not in
-// retries until the mission timer, and leaves the thrusters neutral.
+// retries until the mission timer, and leaves the thrusters neutral. The current sweeps the marker
+// from view before the estimate reaches its limit: the first loss searches again, the second
+// (mission.beyond_hold_losses) ends it.
 TEST(DockingClosedLoop, ACurrentBeyondTheThrustersEndsTheMissionAsBeyondHold) {
   const Eigen::Vector3d across(0.0, 0.8, 0.0);  // the marker's axis points north: this is east
   for (std::uint64_t seed : {1u, 2u, 3u}) {
@@ -263,7 +266,7 @@ TEST(DockingClosedLoop, ACurrentBeyondTheThrustersEndsTheMissionAsBeyondHold) {
     EXPECT_EQ(r.final_reason, "current beyond hold") << "seed " << seed;
     EXPECT_LT(r.end_s, 40.0) << "seed " << seed;
     EXPECT_FALSE(r.thrust_after_end) << "seed " << seed;
-    EXPECT_EQ(r.aborts, 0) << "seed " << seed;
+    EXPECT_LE(r.aborts, 1) << "seed " << seed;
   }
 }
 

@@ -47,12 +47,14 @@ class MissionTest : public ::testing::Test {
     in.attitude_aided = attitude_aided;
     in.disturbance_settled = settled;
     in.disturbance_at_limit = at_limit;
+    in.disturbance_rising = rising;
     in.current_beyond_hold = beyond_hold;
     return m.update(in);
   }
   // The servo's estimate of the current, as the next ticks report it.
   bool settled = true;
   bool at_limit = false;
+  bool rising = false;
   bool beyond_hold = false;
   bool attitude_aided = false;  // the next ticks' partial views have the attitude sensor's rotation
   MissionOutput blind(Mission& m) { return tick(m, false, Eigen::Isometry3d::Identity()); }
@@ -566,6 +568,41 @@ TEST_F(MissionTest, ACurrentBeyondHoldFailsTheMissionWithoutRetrying) {
   at_limit = false;
   EXPECT_EQ(m.state(), MissionState::failed);
   EXPECT_EQ(drain(m).back(), "approach>failed:current beyond hold");
+}
+
+// A current that sweeps the marker from view before its estimate reaches the limit: the first
+// loss while the estimate is still rising searches again; the mission.beyond_hold_losses-th ends
+// the mission. Settling in view between the losses clears the count.
+TEST_F(MissionTest, TheMarkerSweptAwayTwiceWhileTheEstimateRisesIsBeyondHold) {
+  Mission m = make();
+  to_approach(m);
+  settled = false;
+  rising = true;
+  for (int k = 0; k < params.lost_frames; ++k) blind(m);
+  blind(m);  // ABORT searches at once after a loss before the dock
+  EXPECT_EQ(m.state(), MissionState::search);
+  EXPECT_EQ(m.aborts(), 1);
+  for (int k = 0; k < params.acquire_frames; ++k) tick(m, true, seen_at({2.0, 0.2, 0.1}));
+  ASSERT_EQ(m.state(), MissionState::approach);
+  for (int k = 0; k < params.lost_frames; ++k) blind(m);
+  EXPECT_EQ(m.state(), MissionState::failed);
+  EXPECT_EQ(drain(m).back(), "approach>failed:current beyond hold");
+
+  // Settled in view after the first loss: the second is an ordinary abort.
+  Mission n = make();
+  to_approach(n);
+  for (int k = 0; k < params.lost_frames + 1; ++k) blind(n);
+  for (int k = 0; k < params.acquire_frames; ++k) tick(n, true, seen_at({2.0, 0.2, 0.1}));
+  settled = true;
+  rising = false;
+  tick(n, true, seen_at({2.0, 0.2, 0.1}));
+  settled = false;
+  rising = true;
+  for (int k = 0; k < params.lost_frames + 1; ++k) blind(n);
+  EXPECT_EQ(n.state(), MissionState::search);
+  EXPECT_EQ(n.aborts(), 2);
+  settled = true;
+  rising = false;
 }
 
 }  // namespace
