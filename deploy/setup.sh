@@ -1,8 +1,16 @@
 #!/usr/bin/env bash
 # Installs rovctl's build and test dependencies from Debian's packages and builds it in ./build.
 # Usage: bash deploy/setup.sh [BUILD_DIR] [extra cmake args...]
+#        bash deploy/setup.sh --arch arm64 [options]: the arm64 cross build in ./build-arm64, its
+#        tests under qemu and its .deb (deploy/cross-arm64.sh says how and takes the options).
 set -euo pipefail
 cd "$(dirname "$0")/.."
+
+if [ "${1:-}" == "--arch" ]; then
+  [ "${2:-}" == "arm64" ] || { echo "setup: --arch takes arm64 (the native build needs no --arch)" >&2; exit 2; }
+  shift 2
+  exec bash deploy/cross-arm64.sh "$@"
+fi
 
 packages=(build-essential cmake ninja-build pkg-config git
   libeigen3-dev libopencv-dev libyaml-cpp-dev libmodbus-dev

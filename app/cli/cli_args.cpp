@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cerrno>
+#include <cmath>
 #include <cstdlib>
 
 #include "app/runtime/errors.hpp"
@@ -92,6 +93,22 @@ std::vector<std::string> CliArgs::get_list(const std::string& name) const {
     start = comma + 1;
   }
   return items;
+}
+
+std::vector<double> CliArgs::get_ascending(const std::string& name, double above, double at_most,
+                                           const std::string& what) const {
+  std::vector<double> numbers;
+  for (const std::string& item : get_list(name)) {
+    char* end = nullptr;
+    const double v = std::strtod(item.c_str(), &end);
+    if (*end != '\0' || !std::isfinite(v) || !(v > above && v <= at_most) ||
+        (!numbers.empty() && !(v > numbers.back()))) {
+      throw UsageError("rovctl " + command_ + ": " + name + " " + get(name) + ": must be " + what +
+                       " separated by commas (at '" + item + "')");
+    }
+    numbers.push_back(v);
+  }
+  return numbers;
 }
 
 }  // namespace rovctl::app

@@ -23,6 +23,11 @@ class CliArgs {
   // A comma-separated value (`--only a,b`): its items in order, none if the option is absent.
   // An empty item (`a,,b`, `a,`, an empty value) is a usage error naming the option.
   std::vector<std::string> get_list(const std::string& name) const;
+  // A comma list of numbers (`--range-bands-m 0.5,1.0,1.3`), strictly ascending, each finite and in
+  // (above, at_most]; a bad one is a usage error naming the option, its value, `what` it must be
+  // and the item. None if the option is absent.
+  std::vector<double> get_ascending(const std::string& name, double above, double at_most,
+                                    const std::string& what) const;
 
  private:
   std::string command_;

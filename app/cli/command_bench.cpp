@@ -205,28 +205,10 @@ void print_figures(const ModeFigures& m, const std::string& mode, int cap) {
               m.r_err_deg_median);
 }
 
-// `OPTION e1,e2,...`: band edges, ascending, each finite and in (lowest, highest]; the error says
-// they must be `what` and names the option and the item.
-std::vector<double> band_edges(const CliArgs& args, const std::string& option, double lowest,
-                               double highest, const std::string& what) {
-  std::vector<double> edges;
-  for (const std::string& item : args.get_list(option)) {
-    char* end = nullptr;
-    const double v = std::strtod(item.c_str(), &end);
-    if (item.empty() || *end != '\0' || !std::isfinite(v) || !(v > lowest && v <= highest) ||
-        (!edges.empty() && !(v > edges.back()))) {
-      throw UsageError("rovctl bench: " + option + " must be " + what +
-                       " separated by commas, got '" + args.get(option) + "' (at '" + item + "')");
-    }
-    edges.push_back(v);
-  }
-  return edges;
-}
-
 // `--range-bands-m 0.5,1.0,1.3`: the edges between range bands, m, ascending.
 std::vector<double> range_edges(const CliArgs& args) {
   if (!args.has("--range-bands-m")) return {0.5, 1.0, 1.3};
-  return band_edges(args, "--range-bands-m", 0.0, 100.0, "ascending ranges in (0, 100] m");
+  return args.get_ascending("--range-bands-m", 0.0, 100.0, "ascending ranges in (0, 100] m");
 }
 
 // `--by FIELD --by-edges 1,1.5`: a manifest number to split each condition's score by, and its
@@ -244,7 +226,7 @@ FieldSplit field_split(const CliArgs& args) {
   }
   split.field = args.get("--by");
   const double inf = std::numeric_limits<double>::infinity();
-  split.edges = band_edges(args, "--by-edges", -inf, inf, "ascending numbers");
+  split.edges = args.get_ascending("--by-edges", -inf, inf, "ascending numbers");
   return split;
 }
 

@@ -27,7 +27,7 @@ namespace fs = std::filesystem;
 
 constexpr const char* kUsageLine =
     "usage: rovctl tune-marker --config FILE --pairs DIR --out FILE [--images DIR] [--frames N] "
-    "[--seed S] [--max-background F] [--json] [--force]";
+    "[--seed S] [--max-background F] [--range-m NEAR,FAR] [--json] [--force]";
 
 cv::Mat read_recorded_image(const fs::path& path, const hal::CameraModel& camera,
                             const std::string& calibration_file) {
@@ -68,7 +68,7 @@ std::string window_text(const hal::MarkerSphere& s) {
 }
 
 void print_report(const ColourTuningResult& r, const hal::MarkerModel& configured,
-                  double water_correction) {
+                  double water_correction, double range_near_m, double range_far_m) {
   std::printf(
       "rovctl tune-marker: marker located in %d of %zu pairs (estimator ok, "
       "water_correction %.2f)\n",
@@ -88,6 +88,20 @@ void print_report(const ColourTuningResult& r, const hal::MarkerModel& configure
         s.name.c_str(), s.pixels, s.hue_p3_deg, s.hue_p50_deg, s.hue_p97_deg, s.saturation_p10,
         s.saturation_p50, s.value_p10, s.value_p50);
   }
+  std::printf(
+      "hue drift with range (each view's p3 and p97 against the sphere's range; the windows "
+      "follow it over the working range %.2f-%.2f m):\n",
+      range_near_m, range_far_m);
+  for (const SphereSpread& s : r.spreads) {
+    std::printf(
+        "  %-6s views at %.2f-%.2f m  p3 %+6.1f deg/m, p97 %+6.1f deg/m  ->  hue %5.1f-%5.1f "
+        "deg\n",
+        s.name.c_str(), s.range_min_m, s.range_max_m, s.hue_low_drift_deg_per_m,
+        s.hue_high_drift_deg_per_m, s.hue_low_deg, s.hue_high_deg);
+  }
+  std::printf("located pairs: the marker %.2f-%.2f m out; near range %s, far range %s\n",
+              r.located_range_min_m, r.located_range_max_m,
+              r.covers_near ? "covered" : "NOT covered", r.covers_far ? "covered" : "NOT covered");
   std::printf("windows (configured -> proposed):\n");
   for (std::size_t i = 0; i < configured.spheres.size(); ++i) {
     std::printf("  %-6s %s  ->  %s\n", configured.spheres[i].name.c_str(),
@@ -114,6 +128,10 @@ void print_json(const ColourTuningResult& r) {
       .field("reason", std::string_view(r.reason))
       .field("pairs", static_cast<long>(r.pairs.size()))
       .field("located", static_cast<long>(r.located()))
+      .field("located_range_min_m", r.located_range_min_m)
+      .field("located_range_max_m", r.located_range_max_m)
+      .field("covers_near", r.covers_near)
+      .field("covers_far", r.covers_far)
       .begin_array("spheres");
   for (std::size_t i = 0; i < r.spreads.size(); ++i) {
     const SphereSpread& s = r.spreads[i];
@@ -125,6 +143,12 @@ void print_json(const ColourTuningResult& r) {
         .field("hue_p3_deg", s.hue_p3_deg)
         .field("hue_p50_deg", s.hue_p50_deg)
         .field("hue_p97_deg", s.hue_p97_deg)
+        .field("range_min_m", s.range_min_m)
+        .field("range_max_m", s.range_max_m)
+        .field("hue_low_drift_deg_per_m", s.hue_low_drift_deg_per_m)
+        .field("hue_high_drift_deg_per_m", s.hue_high_drift_deg_per_m)
+        .field("hue_low_deg", s.hue_low_deg)
+        .field("hue_high_deg", s.hue_high_deg)
         .field("saturation_p10", s.saturation_p10)
         .field("value_p10", s.value_p10)
         .field("hue_min_deg", t.hue_min_deg)
@@ -137,6 +161,10 @@ void print_json(const ColourTuningResult& r) {
         .field("outside_per_view_after", c.outside_per_view_after)
         .field("background_fraction_after", c.background_fraction_after)
         .end_object();
+  }
+  j.end_array().begin_array("notes");
+  for (const std::string& note : r.notes) {
+    j.begin_object().field("text", std::string_view(note)).end_object();
   }
   j.end_array().end_object();
   std::cout << j.str() << "\n";
@@ -168,13 +196,26 @@ void write_figures(const std::string& dir, const std::vector<StereoImages>& pair
   }
 }
 
+// --range-m NEAR,FAR: the marker's working range from the camera, metres, NEAR below FAR.
+void parse_range(const CliArgs& args, ColourTuningOptions& options) {
+  const std::vector<double> range =
+      args.get_ascending("--range-m", 0.0, 20.0, "NEAR,FAR: ascending ranges in (0, 20] m");
+  if (range.empty()) return;
+  if (range.size() != 2) {
+    throw UsageError("rovctl tune-marker: --range-m " + args.get("--range-m") +
+                     ": must be NEAR,FAR, two ranges in metres (" + kUsageLine + ")");
+  }
+  options.range_near_m = range[0];
+  options.range_far_m = range[1];
+}
+
 }  // namespace
 
 int command_tune_marker(const Words& words) {
-  const CliArgs args = CliArgs::parse(
-      "tune-marker", words,
-      {"--config", "--pairs", "--out", "--images", "--frames", "--seed", "--max-background"},
-      {"--json", "--force"});
+  const CliArgs args = CliArgs::parse("tune-marker", words,
+                                      {"--config", "--pairs", "--out", "--images", "--frames",
+                                       "--seed", "--max-background", "--range-m"},
+                                      {"--json", "--force"});
   for (const char* required : {"--config", "--pairs", "--out"}) {
     if (!args.has(required)) {
       throw UsageError(std::string("rovctl tune-marker: ") + required + " is required (" +
@@ -199,6 +240,7 @@ int command_tune_marker(const Words& words) {
   options.seed = static_cast<std::uint64_t>(args.get_int("--seed", 1, 0, 0x7FFFFFFFL));
   options.max_background_fraction =
       args.get_double("--max-background", options.max_background_fraction, 0.0, 10.0);
+  parse_range(args, options);
 
   const AppConfig config = load_app_config(args.get("--config"));
   const hal::StereoRig rig = load_rig(config);
@@ -210,7 +252,7 @@ int command_tune_marker(const Words& words) {
   if (args.has("--json")) {
     print_json(r);
   } else {
-    print_report(r, config.marker, wc);
+    print_report(r, config.marker, wc, options.range_near_m, options.range_far_m);
   }
   if (r.refused) {
     std::cerr << "rovctl tune-marker: refused, nothing written: " << r.reason << "\n";

@@ -49,7 +49,7 @@ commands:
   record     --config FILE --out DIR [--frames N]  save timestamped stereo pairs
   calibrate  --pairs DIR --board chessboard:COLSxROWS:SQUARE_MM --out FILE [--json] [--force]
              stereo calibration from a recording of a chessboard (COLSxROWS inner corners)
-  tune-marker --config FILE --pairs DIR --out FILE [--images DIR] [--json] [--force]
+  tune-marker --config FILE --pairs DIR --out FILE [--range-m NEAR,FAR] [--images DIR] [--json] [--force]
              the marker's hue windows and floors measured in a recording (DIR as
              `record` writes it), as a `marker:` config fragment, with figures
   params     [--config FILE]              every config parameter: unit, range, default, meaning

@@ -9,7 +9,7 @@ namespace {
 // Seated this long before a fault: the hold has settled, the charge is well under way.
 constexpr double kAfterSeatedS = 3.0;
 
-constexpr ChargeFault kFaults[] = {
+constexpr ChargeFault kChargeFaults[] = {
     {"none", "nothing", "departed", "charge complete"},
     {"knock", "one knock out of the socket", "departed", "probe unseated: re-seat"},
     {"knocks", "a knock each time the probe seats, one more than max_reseats", "abort",
@@ -25,11 +25,11 @@ constexpr ChargeFault kFaults[] = {
 
 }  // namespace
 
-const ChargeFault* charge_faults() { return kFaults; }
+const ChargeFault* charge_faults() { return kChargeFaults; }
 
 std::string charge_fault_names_text() {
   std::string text;
-  for (const ChargeFault* f = kFaults; f->name != nullptr; ++f) {
+  for (const ChargeFault* f = kChargeFaults; f->name != nullptr; ++f) {
     if (!text.empty()) text += ", ";
     text += f->name;
   }
@@ -37,7 +37,7 @@ std::string charge_fault_names_text() {
 }
 
 const ChargeFault* find_charge_fault(const std::string& name) {
-  for (const ChargeFault* f = kFaults; f->name != nullptr; ++f) {
+  for (const ChargeFault* f = kChargeFaults; f->name != nullptr; ++f) {
     if (name == f->name) return f;
   }
   return nullptr;

@@ -7,7 +7,7 @@
 namespace rovctl::app {
 namespace {
 
-constexpr InjectedFault kFaults[] = {
+constexpr InjectedFault kInjectedFaults[] = {
     {"camera_lost", "camera_lost", false, "the stereo camera device disappears"},
     {"camera_drop", "vision_lost", true, "every grab times out for camera_drop_for_s"},
     {"frozen_frames", "vision_frozen", true, "the same images delivered again, newly stamped"},
@@ -31,18 +31,18 @@ constexpr InjectedFault kFaults[] = {
 
 }  // namespace
 
-const InjectedFault* injected_faults() { return kFaults; }
+const InjectedFault* injected_faults() { return kInjectedFaults; }
 
 std::string injected_fault_names_text() {
   std::string text;
-  for (const InjectedFault* f = kFaults; f->name != nullptr; ++f) {
+  for (const InjectedFault* f = kInjectedFaults; f->name != nullptr; ++f) {
     text += (text.empty() ? "" : ", ") + std::string(f->name);
   }
   return text;
 }
 
 const InjectedFault* find_injected_fault(const std::string& name) {
-  for (const InjectedFault* f = kFaults; f->name != nullptr; ++f) {
+  for (const InjectedFault* f = kInjectedFaults; f->name != nullptr; ++f) {
     if (name == f->name) return f;
   }
   return nullptr;

@@ -205,6 +205,7 @@ double percentile(std::vector<double>& v, double p) {
 struct Samples {
   std::vector<double> hue_deg, saturation, value;
   std::vector<std::size_t> view_start;  // where each view's pixels begin
+  std::vector<double> view_range_m;     // the sphere's distance from that view's camera
 };
 
 // Each sphere's pixels in every located view where it is whole, through the segmenter's gains.
@@ -220,6 +221,8 @@ std::vector<Samples> sample_spheres(const hal::MarkerModel& marker, double water
       const Disc& d = view.discs[s];
       if (!d.whole) continue;
       samples[s].view_start.push_back(samples[s].hue_deg.size());
+      samples[s].view_range_m.push_back(
+          (view.T_cam_marker * marker.spheres[s].centre_marker_m).norm());
       const int r = static_cast<int>(std::ceil(d.radius_px));
       for (int v = static_cast<int>(d.centre_px.y) - r; v <= d.centre_px.y + r; ++v) {
         for (int u = static_cast<int>(d.centre_px.x) - r; u <= d.centre_px.x + r; ++u) {
@@ -244,7 +247,10 @@ constexpr std::size_t kMinViewPixels = 20;
 // The window must hold the sphere in every view, near or far (a far sphere has few pixels and
 // would vanish in pooled percentiles): the extremes are the lowest 3rd and highest 97th hue
 // percentile, and the lowest 10th saturation and value percentile, over the views.
-SphereSpread spread_of(const std::string& name, Samples& s) {
+// Views spanning less than this in range give no drift: the slope would be noise.
+constexpr double kMinDriftSpanM = 0.2;
+
+SphereSpread spread_of(const std::string& name, Samples& s, const ColourTuningOptions& options) {
   SphereSpread out;
   out.name = name;
   out.pixels = static_cast<long>(s.hue_deg.size());
@@ -260,6 +266,7 @@ SphereSpread spread_of(const std::string& name, Samples& s) {
   offsets.reserve(s.hue_deg.size());
   for (double h : s.hue_deg) offsets.push_back(hue_difference_deg(h, mean_hue_deg));
   double low = 180.0, high = -180.0, sat = 1.0, val = 1.0;
+  std::vector<RangedHueExtremes> extremes;
   s.view_start.push_back(offsets.size());
   for (std::size_t k = 0; k + 1 < s.view_start.size(); ++k) {
     const auto a = static_cast<long>(s.view_start[k]), b = static_cast<long>(s.view_start[k + 1]);
@@ -267,8 +274,9 @@ SphereSpread spread_of(const std::string& name, Samples& s) {
     std::vector<double> o(offsets.begin() + a, offsets.begin() + b);
     std::vector<double> sv(s.saturation.begin() + a, s.saturation.begin() + b);
     std::vector<double> vv(s.value.begin() + a, s.value.begin() + b);
-    low = std::min(low, percentile(o, 3));
-    high = std::max(high, percentile(o, 97));
+    extremes.push_back({s.view_range_m[k], percentile(o, 3), percentile(o, 97)});
+    low = std::min(low, extremes.back().low_deg);
+    high = std::max(high, extremes.back().high_deg);
     sat = std::min(sat, percentile(sv, 10));
     val = std::min(val, percentile(vv, 10));
   }
@@ -276,6 +284,16 @@ SphereSpread spread_of(const std::string& name, Samples& s) {
   out.hue_p3_deg = wrap_deg(mean_hue_deg + low);
   out.hue_p50_deg = wrap_deg(mean_hue_deg + percentile(offsets, 50));
   out.hue_p97_deg = wrap_deg(mean_hue_deg + high);
+  const HueDrift drift = hue_drift_over_range(extremes, options.range_near_m, options.range_far_m);
+  low = drift.low_deg;
+  high = drift.high_deg;
+  out.range_min_m = drift.range_min_m;
+  out.range_max_m = drift.range_max_m;
+  out.hue_low_drift_deg_per_m = drift.low_drift_deg_per_m;
+  out.hue_high_drift_deg_per_m = drift.high_drift_deg_per_m;
+  // Never past half the circle from the mean: the spread check refuses long before.
+  out.hue_low_deg = wrap_deg(mean_hue_deg + std::max(low, -179.0));
+  out.hue_high_deg = wrap_deg(mean_hue_deg + std::min(high, 179.0));
   out.saturation_p10 = sat;
   out.saturation_p50 = percentile(s.saturation, 50);
   out.value_p10 = val;
@@ -297,14 +315,14 @@ void propose(const std::vector<SphereSpread>& spreads, const ColourTuningOptions
     for (std::size_t j = 0; j < spreads.size(); ++j) {
       if (j == i || spreads[j].pixels == 0) continue;
       // The free hue between this spread's top and the other's bottom, and the other way round.
-      const double gap_above = wrap_deg(spreads[j].hue_p3_deg - s.hue_p97_deg);
-      const double gap_below = wrap_deg(s.hue_p3_deg - spreads[j].hue_p97_deg);
+      const double gap_above = wrap_deg(spreads[j].hue_low_deg - s.hue_high_deg);
+      const double gap_below = wrap_deg(s.hue_low_deg - spreads[j].hue_high_deg);
       if (gap_above < 180.0) above = std::min(above, gap_above / 2.0);
       if (gap_below < 180.0) below = std::min(below, gap_below / 2.0);
     }
     hal::MarkerSphere& sphere = tuned.spheres[i];
-    sphere.hue_min_deg = round_to(wrap_deg(s.hue_p3_deg - below), 0.1);
-    sphere.hue_max_deg = round_to(wrap_deg(s.hue_p97_deg + above), 0.1);
+    sphere.hue_min_deg = round_to(wrap_deg(s.hue_low_deg - below), 0.1);
+    sphere.hue_max_deg = round_to(wrap_deg(s.hue_high_deg + above), 0.1);
     if (sphere.hue_min_deg >= 360.0) sphere.hue_min_deg = 0.0;
     if (sphere.hue_max_deg >= 360.0) sphere.hue_max_deg = 0.0;
     sphere.saturation_min = round_to(options.floor_fraction * s.saturation_p10, 0.01);
@@ -375,9 +393,9 @@ constexpr double kMinOwnShare = 0.8;
 // first sphere whose window and floors a pixel meets) tell them apart.
 bool spreads_overlap(const SphereSpread& a, const SphereSpread& b) {
   auto inside = [](double h, const SphereSpread& s) {
-    return wrap_deg(h - s.hue_p3_deg) <= wrap_deg(s.hue_p97_deg - s.hue_p3_deg);
+    return wrap_deg(h - s.hue_low_deg) <= wrap_deg(s.hue_high_deg - s.hue_low_deg);
   };
-  return inside(a.hue_p3_deg, b) || inside(a.hue_p97_deg, b) || inside(b.hue_p3_deg, a);
+  return inside(a.hue_low_deg, b) || inside(a.hue_high_deg, b) || inside(b.hue_low_deg, a);
 }
 
 std::string refusal(const ColourTuningResult& r, const ColourTuningOptions& options) {
@@ -414,7 +432,130 @@ std::string refusal(const ColourTuningResult& r, const ColourTuningOptions& opti
   return {};
 }
 
+// The share of a sphere's own pixels its window takes from the background, with this marker.
+double background_share(const hal::MarkerModel& marker, double water_correction,
+                        const std::vector<View>& views, std::size_t sphere) {
+  const Tally t = tally(marker, water_correction, views);
+  return static_cast<double>(t.outside[sphere]) /
+         static_cast<double>(std::max<long>(1, t.inside_hits[sphere]));
+}
+
+// Far off, a sphere's colour tends to the water's own: the window that follows the drift there
+// can reach the background's hues. Where it takes more background than the limit allows, each
+// window edge the drift moved is drawn back (bisection, 1/32 of the way) toward the recording's
+// own extremes until it does not; the note says how far the window now reaches.
+void trim_drift_into_background(ColourTuningResult& r, const hal::MarkerModel& observed,
+                                double water_correction, const std::vector<View>& views,
+                                const ColourTuningOptions& options) {
+  for (std::size_t i = 0; i < r.tuned.spheres.size(); ++i) {
+    const hal::MarkerSphere a = observed.spheres[i], b = r.tuned.spheres[i];
+    if (a.hue_min_deg == b.hue_min_deg && a.hue_max_deg == b.hue_max_deg) continue;
+    auto at = [&](double t) {
+      hal::MarkerModel m = r.tuned;
+      m.spheres[i].hue_min_deg = round_to(
+          wrap_deg(a.hue_min_deg + t * hue_difference_deg(b.hue_min_deg, a.hue_min_deg)), 0.1);
+      m.spheres[i].hue_max_deg = round_to(
+          wrap_deg(a.hue_max_deg + t * hue_difference_deg(b.hue_max_deg, a.hue_max_deg)), 0.1);
+      return m;
+    };
+    if (background_share(r.tuned, water_correction, views, i) <= options.max_background_fraction) {
+      continue;
+    }
+    double lo = 0.0, hi = 1.0;  // lo: within the limit (the recording's own extremes)
+    for (int k = 0; k < 5; ++k) {
+      const double mid = 0.5 * (lo + hi);
+      const bool fits =
+          background_share(at(mid), water_correction, views, i) <= options.max_background_fraction;
+      (fits ? lo : hi) = mid;
+    }
+    r.tuned = at(lo);
+    char note[320];
+    std::snprintf(note, sizeof note,
+                  "the %s window follows the drift only to hue %.1f-%.1f deg (the drift reached "
+                  "%.1f-%.1f): further it takes the background, whose colour the sphere takes "
+                  "on far off in this water",
+                  b.name.c_str(), r.tuned.spheres[i].hue_min_deg, r.tuned.spheres[i].hue_max_deg,
+                  b.hue_min_deg, b.hue_max_deg);
+    r.notes.emplace_back(note);
+  }
+}
+
+// A recording reaches a working range's end when a located pair is this close to it.
+constexpr double kRangeCoverageSlackM = 0.1;
+
+// Where the located pairs put the marker against the working range; what falls short is said,
+// with how far the windows were carried beyond the recording by the measured drift.
+void judge_range_coverage(ColourTuningResult& r, const ColourTuningOptions& options) {
+  double near = 1e9, far = 0.0;
+  for (const PairLocation& p : r.pairs) {
+    if (!p.located) continue;
+    near = std::min(near, p.T_cl_marker.translation().norm());
+    far = std::max(far, p.T_cl_marker.translation().norm());
+  }
+  r.located_range_min_m = near;
+  r.located_range_max_m = far;
+  r.covers_near = near <= options.range_near_m + kRangeCoverageSlackM;
+  r.covers_far = far >= options.range_far_m - kRangeCoverageSlackM;
+  char note[320];
+  if (!r.covers_far) {
+    std::snprintf(note, sizeof note,
+                  "the recording does not cover far range: the farthest located pair is %.2f m "
+                  "out, the working range reaches %.2f m (--range-m); beyond %.2f m the windows "
+                  "follow the hue drift measured with range, not a view: record the marker out "
+                  "to %.2f m",
+                  far, options.range_far_m, far, options.range_far_m);
+    r.notes.emplace_back(note);
+  }
+  if (!r.covers_near) {
+    std::snprintf(note, sizeof note,
+                  "the recording does not cover near range: the nearest located pair is %.2f m "
+                  "out, the working range starts at %.2f m (--range-m); nearer, the windows "
+                  "follow the measured drift: record the marker in to %.2f m",
+                  near, options.range_near_m, options.range_near_m);
+    r.notes.emplace_back(note);
+  }
+}
+
 }  // namespace
+
+HueDrift hue_drift_over_range(const std::vector<RangedHueExtremes>& views, double near_m,
+                              double far_m) {
+  HueDrift out;
+  if (views.empty()) return out;
+  double r_mean = 0.0, low_mean = 0.0, high_mean = 0.0;
+  out.range_min_m = 1e9;
+  out.low_deg = 1e9;
+  out.high_deg = -1e9;
+  const auto n = static_cast<double>(views.size());
+  for (const RangedHueExtremes& v : views) {
+    out.range_min_m = std::min(out.range_min_m, v.range_m);
+    out.range_max_m = std::max(out.range_max_m, v.range_m);
+    out.low_deg = std::min(out.low_deg, v.low_deg);
+    out.high_deg = std::max(out.high_deg, v.high_deg);
+    r_mean += v.range_m / n;
+    low_mean += v.low_deg / n;
+    high_mean += v.high_deg / n;
+  }
+  if (views.size() < 3 || out.range_max_m - out.range_min_m < kMinDriftSpanM) return out;
+  double srr = 0.0, srl = 0.0, srh = 0.0;
+  for (const RangedHueExtremes& v : views) {
+    srr += (v.range_m - r_mean) * (v.range_m - r_mean);
+    srl += (v.range_m - r_mean) * (v.low_deg - low_mean);
+    srh += (v.range_m - r_mean) * (v.high_deg - high_mean);
+  }
+  out.low_drift_deg_per_m = srl / srr;
+  out.high_drift_deg_per_m = srh / srr;
+  double under = 1e9, over = -1e9;  // the lines' values at range 0
+  for (const RangedHueExtremes& v : views) {
+    under = std::min(under, v.low_deg - out.low_drift_deg_per_m * v.range_m);
+    over = std::max(over, v.high_deg - out.high_drift_deg_per_m * v.range_m);
+  }
+  for (const double r : {near_m, far_m}) {
+    out.low_deg = std::min(out.low_deg, under + out.low_drift_deg_per_m * r);
+    out.high_deg = std::max(out.high_deg, over + out.high_drift_deg_per_m * r);
+  }
+  return out;
+}
 
 int ColourTuningResult::located() const {
   return static_cast<int>(
@@ -462,9 +603,18 @@ ColourTuningResult tune_marker_colours(const hal::StereoRig& rig, const hal::Mar
   const std::vector<View> views = located_views(rig, marker, pairs, r.pairs);
   std::vector<Samples> samples = sample_spheres(marker, params.water_correction, views);
   for (std::size_t s = 0; s < marker.spheres.size(); ++s) {
-    r.spreads.push_back(spread_of(marker.spheres[s].name, samples[s]));
+    r.spreads.push_back(spread_of(marker.spheres[s].name, samples[s], options));
   }
   propose(r.spreads, options, r.tuned);
+  std::vector<SphereSpread> observed_spreads = r.spreads;
+  for (SphereSpread& s : observed_spreads) {
+    s.hue_low_deg = s.hue_p3_deg;
+    s.hue_high_deg = s.hue_p97_deg;
+  }
+  hal::MarkerModel observed = marker;
+  propose(observed_spreads, options, observed);
+  judge_range_coverage(r, options);
+  trim_drift_into_background(r, observed, params.water_correction, views, options);
   r.counts = counts_of(marker, r.tuned, params.water_correction, views);
   for (std::size_t i = 0; i < r.spreads.size(); ++i) {
     for (std::size_t j = i + 1; j < r.spreads.size(); ++j) {

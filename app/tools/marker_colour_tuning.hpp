@@ -32,6 +32,11 @@ struct ColourTuningOptions {
   // Refused when a sphere's hues spread wider than this (3rd to 97th percentile): it has no
   // colour of its own in this water.
   double max_hue_spread_deg = 90.0;
+  // The marker's ranges from the camera the windows must hold over. A sphere's hue drifts with
+  // range as the water's cast grows over its colour; beyond the recording's ranges the windows
+  // follow that drift (measured on the recording) out to these, and the report says the
+  // recording falls short of them.
+  double range_near_m = 0.3, range_far_m = 1.5;
 };
 
 // How a pair's spheres were found, first that worked: the configured windows; each window widened
@@ -55,6 +60,13 @@ struct SphereSpread {
   double hue_p3_deg = 0, hue_p50_deg = 0, hue_p97_deg = 0;
   double saturation_p10 = 0, saturation_p50 = 0;
   double value_p10 = 0, value_p50 = 0;
+  // The sphere's ranges over the views that set the extremes, and how each view's p3 and p97
+  // move with range (least squares, deg per metre; 0 when the views span under 0.2 m).
+  double range_min_m = 0, range_max_m = 0;
+  double hue_low_drift_deg_per_m = 0, hue_high_drift_deg_per_m = 0;
+  // What the window is built on: p3 / p97, extended over the working range by the drift (a line
+  // of that slope under every view's p3, over every view's p97, read at the range's ends).
+  double hue_low_deg = 0, hue_high_deg = 0;
 };
 
 // Per colour, over the located views: the share of the sphere's inner disc labelled its colour,
@@ -79,6 +91,10 @@ struct ColourTuningResult {
   std::vector<ColourCounts> counts;
   hal::MarkerModel tuned;          // the configured marker with the proposed windows and floors
   std::vector<std::string> notes;  // what the report should say beside the figures
+  // The located pairs' marker ranges from the left camera, and whether they reach the working
+  // range's ends (within 0.1 m); the notes say what falls short.
+  double located_range_min_m = 0, located_range_max_m = 0;
+  bool covers_near = false, covers_far = false;
   int located() const;
 };
 
@@ -88,6 +104,24 @@ ColourTuningResult tune_marker_colours(const hal::StereoRig& rig, const hal::Mar
                                        const estimator::EstimatorParams& params,
                                        const std::vector<StereoImages>& pairs,
                                        const ColourTuningOptions& options);
+
+// One view's hue extremes of a sphere (p3 and p97, as offsets in degrees from any fixed hue) at the
+// sphere's range from that view's camera.
+struct RangedHueExtremes {
+  double range_m = 0, low_deg = 0, high_deg = 0;
+};
+
+// How the extremes drift with range: the least-squares slope of the lows and of the highs (0 when
+// fewer than 3 views or the views span under 0.2 m), and the lowest low / highest high over the
+// views and over the working range [near_m, far_m], read off lines of those slopes drawn under
+// every low and over every high.
+struct HueDrift {
+  double low_drift_deg_per_m = 0, high_drift_deg_per_m = 0;
+  double low_deg = 0, high_deg = 0;
+  double range_min_m = 0, range_max_m = 0;  // the views'
+};
+HueDrift hue_drift_over_range(const std::vector<RangedHueExtremes>& views, double near_m,
+                              double far_m);
 
 // The marker with every window widened by `widen_deg` each side (capped at half the way to each
 // neighbour's centre) and floors lowered to at most `saturation_min` / `value_min`.

@@ -7,11 +7,11 @@
 #include <random>
 #include <stdexcept>
 
+#include "hal/model/pose.hpp"
+
 namespace rovctl::hal::mock {
 
 namespace {
-
-constexpr double kDegToRad = M_PI / 180.0;
 
 double seconds(std::int64_t ns) { return static_cast<double>(ns) * 1e-9; }
 
@@ -213,7 +213,7 @@ void SimulatedWorld::update_docking() {
                                (params_.contact.socket_wall ? params_.contact.wall_band_m : 0.0);
   docking_.seated = docking_.lateral_error_m <= seat_radius_m &&
                     d.z() >= station_.capture_depth_m - params_.recharge.charger.pin_engage_m &&
-                    docking_.misalignment_rad <= params_.contact.angle_tolerance_deg * kDegToRad;
+                    docking_.misalignment_rad <= params_.contact.angle_tolerance_deg * kRadPerDeg;
   if (docking_.seated) {
     if (first_seated_ns_ < 0) first_seated_ns_ = time_ns_.load();
     if (seated_since_ns_ < 0) seated_since_ns_ = time_ns_.load();
@@ -221,7 +221,7 @@ void SimulatedWorld::update_docking() {
     seated_since_ns_ = -1;
   }
   if (!docking_.docked && centred && d.z() >= station_.capture_depth_m &&
-      docking_.misalignment_rad <= params_.contact.angle_tolerance_deg * kDegToRad) {
+      docking_.misalignment_rad <= params_.contact.angle_tolerance_deg * kRadPerDeg) {
     docking_.docked = true;
     docking_.docked_at = time();
   }

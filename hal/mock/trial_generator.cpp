@@ -7,11 +7,11 @@
 #include <stdexcept>
 #include <string>
 
+#include "hal/model/pose.hpp"
+
 namespace rovctl::hal::mock {
 
 namespace {
-
-constexpr double kDegToRad = M_PI / 180.0;
 
 // SplitMix64: decorrelates the trial index and seed into independent streams.
 std::uint64_t mix(std::uint64_t x) {
@@ -75,8 +75,8 @@ TrialConditions TrialGenerator::make(int index, std::uint64_t seed) const {
   t.distance_m = uniform(r_.distance_min_m, r_.distance_max_m);
   t.bearing_deg = uniform(-r_.bearing_max_deg, r_.bearing_max_deg);
   t.elevation_deg = uniform(-r_.elevation_max_deg, r_.elevation_max_deg);
-  const double b = t.bearing_deg * kDegToRad;
-  const double e = t.elevation_deg * kDegToRad;
+  const double b = t.bearing_deg * kRadPerDeg;
+  const double e = t.elevation_deg * kRadPerDeg;
   // Camera position in the marker frame: in front of it (-z), to starboard (+x) for a positive
   // bearing, above (-y) for a positive elevation.
   const Eigen::Vector3d cam_marker =
@@ -90,11 +90,11 @@ TrialConditions TrialGenerator::make(int index, std::uint64_t seed) const {
   const double h_max = want_visible
                            ? r_.heading_offset_max_deg
                            : std::min(180.0, std::max(90.0, 2.0 * r_.heading_offset_max_deg));
-  const double rp = r_.roll_pitch_max_deg * kDegToRad;
+  const double rp = r_.roll_pitch_max_deg * kRadPerDeg;
   const double roll = uniform(-rp, rp);
   const double pitch = uniform(-rp, rp);
   auto pose_for = [&](double heading_offset_deg) {
-    const Eigen::Matrix3d R = (Eigen::AngleAxisd(sight_heading + heading_offset_deg * kDegToRad,
+    const Eigen::Matrix3d R = (Eigen::AngleAxisd(sight_heading + heading_offset_deg * kRadPerDeg,
                                                  Eigen::Vector3d::UnitZ()) *
                                Eigen::AngleAxisd(pitch, Eigen::Vector3d::UnitY()) *
                                Eigen::AngleAxisd(roll, Eigen::Vector3d::UnitX()))

@@ -7,6 +7,8 @@ namespace rovctl::hal {
 
 using Pose = Eigen::Isometry3d;
 
+inline constexpr double kRadPerDeg = M_PI / 180.0;
+
 inline Pose make_pose(const Eigen::Vector3d& t, const Eigen::Quaterniond& q) {
   Pose T = Pose::Identity();
   T.linear() = q.normalized().toRotationMatrix();

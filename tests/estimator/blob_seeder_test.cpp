@@ -14,7 +14,7 @@ namespace {
 
 constexpr int kColour = static_cast<int>(hal::ColourClass::green);
 
-struct Fixture {
+struct SeederFixture {
   testing::TestScene scene;
   BlobSeeder seeder{scene.rig, scene.marker};
   cv::Mat labels{scene.rig.left.height_px, scene.rig.left.width_px, CV_8UC1, cv::Scalar(0)};
@@ -34,7 +34,7 @@ double stadium_reading(double r, double length) {
 }
 
 TEST(BlobSeeder, ASharpDiscReadsNoSmearAndItsDiameterAcross) {
-  Fixture f;
+  SeederFixture f;
   cv::circle(f.labels, {300, 200}, 12, cv::Scalar(kColour), cv::FILLED);
   const Blob& b = f.find();
   ASSERT_TRUE(b.valid);
@@ -43,7 +43,7 @@ TEST(BlobSeeder, ASharpDiscReadsNoSmearAndItsDiameterAcross) {
 }
 
 TEST(BlobSeeder, AStadiumReadsItsLengthAlongItsLine) {
-  Fixture f;
+  SeederFixture f;
   for (const double angle_deg : {0.0, 30.0, 90.0, 135.0}) {
     for (const int length : {12, 24, 40}) {
       f.labels.setTo(0);
@@ -69,7 +69,7 @@ TEST(BlobSeeder, AStadiumReadsItsLengthAlongItsLine) {
 TEST(BlobSeeder, AHalfDiscIsNarrowerThanItsSphere) {
   // A sphere shaded on one side: elongated along the cut, but half as wide as the disc it is
   // part of, which is what keeps the fitness from sweeping it.
-  Fixture f;
+  SeederFixture f;
   cv::circle(f.labels, {300, 200}, 12, cv::Scalar(kColour), cv::FILLED);
   f.labels(cv::Rect(288, 201, 30, 20)).setTo(0);
   const Blob& b = f.find();

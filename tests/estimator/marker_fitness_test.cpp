@@ -16,7 +16,7 @@ namespace {
 using testing::random_pose;
 using testing::TestScene;
 
-struct Fixture {
+struct FitnessFixture {
   TestScene scene;
   HueSegmenter seg{scene.marker};
   MarkerFitness fitness{scene.rig, scene.marker, FitnessParams{}};
@@ -30,7 +30,7 @@ struct Fixture {
 };
 
 TEST(MarkerFitness, TruePoseScoresHighAndOffPosesClearlyLess) {
-  Fixture f;
+  FitnessFixture f;
   std::mt19937_64 rng(11);
   for (int i = 0; i < 10; ++i) {
     const Eigen::Isometry3d truth = random_pose(rng);
@@ -55,7 +55,7 @@ TEST(MarkerFitness, TruePoseScoresHighAndOffPosesClearlyLess) {
 }
 
 TEST(MarkerFitness, AlwaysFiniteAndWithinZeroOne) {
-  Fixture f;
+  FitnessFixture f;
   std::mt19937_64 rng(12);
   f.render(random_pose(rng));
   SearchVolume wide;
@@ -102,13 +102,13 @@ TEST(MarkerFitness, HonoursLensDistortion) {
 }
 
 TEST(MarkerFitness, RejectsLabelsOfTheWrongSize) {
-  Fixture f;
+  FitnessFixture f;
   cv::Mat small(100, 100, CV_8UC1, cv::Scalar(0));
   EXPECT_THROW(f.fitness.set_labels(small, small), std::invalid_argument);
 }
 
 TEST(MarkerFitness, FarFieldIsOffUnlessEnabledAndGradedWhereThePapersFitnessIsBlind) {
-  Fixture f;
+  FitnessFixture f;
   const Eigen::Isometry3d truth =
       hal::make_pose({0.03, 0.01, 0.45}, Eigen::Quaterniond::Identity());
   f.render(truth);
@@ -133,7 +133,7 @@ TEST(MarkerFitness, FarFieldIsOffUnlessEnabledAndGradedWhereThePapersFitnessIsBl
 TEST(MarkerFitness, FarFieldSlopeIsItsWeightOverItsReach) {
   // Sideways off the marker, where F is 0: the search score is weight x nearness, and nearness
   // falls by 1 / reach per pixel, so the score's slope is weight / reach whatever the two are.
-  Fixture f;
+  FitnessFixture f;
   const Eigen::Isometry3d truth =
       hal::make_pose({0.03, 0.01, 0.45}, Eigen::Quaterniond::Identity());
   f.render(truth);
@@ -168,7 +168,7 @@ namespace {
 
 // A motion-blurred pair: the mock's renders along a sideways motion during the exposure,
 // averaged (the truth at mid-exposure), segmented; the fitness told the views' smears.
-struct SmearedFixture : Fixture {
+struct SmearedFitnessFixture : FitnessFixture {
   BlobSeeder seeder{scene.rig, scene.marker};
   std::array<SharedSmear, 2> smear{};
   void render_smeared(const Eigen::Isometry3d& truth, const Eigen::Vector3d& motion_m) {
@@ -208,7 +208,7 @@ struct SmearedFixture : Fixture {
 
 TEST(MarkerFitness, TheSweptModelScoresASmearedMarkersTruthWhereTheDiscModelDoesNot) {
   // 50 mm sideways at 0.8 m: a smear of 1.3 sphere diameters.
-  SmearedFixture f;
+  SmearedFitnessFixture f;
   const Eigen::Isometry3d truth = hal::make_pose(
       {0.03, 0.01, 0.8},
       Eigen::Quaterniond(Eigen::AngleAxisd(0.2, Eigen::Vector3d(1, 1, 0).normalized())));
@@ -237,7 +237,7 @@ TEST(MarkerFitness, TheSweptModelScoresASmearedMarkersTruthWhereTheDiscModelDoes
 }
 
 TEST(MarkerFitness, ASmearTooNarrowOrTooWideForTheSphereIsNotSwept) {
-  SmearedFixture f;
+  SmearedFitnessFixture f;
   const Eigen::Isometry3d truth = hal::make_pose({0.03, 0.01, 0.8}, Eigen::Quaterniond::Identity());
   f.render_smeared(truth, {0.05, 0.0, 0.0});
   ASSERT_LT(f.fitness.evaluate(truth), f.fitness.evaluate_swept(truth) - 0.2);
@@ -256,7 +256,7 @@ TEST(MarkerFitness, ASmearTooNarrowOrTooWideForTheSphereIsNotSwept) {
 TEST(MarkerFitness, WithoutASmearTheSweptModelIsTheDiscModelBitForBit) {
   // Sharp renders: the blobs' readings (an ellipse off axis reads up to 0.9 diameters) share no
   // smear long enough to sweep, so the estimate is scored as before.
-  SmearedFixture f;
+  SmearedFitnessFixture f;
   std::mt19937_64 rng(21);
   for (int i = 0; i < 12; ++i) {
     Eigen::Isometry3d truth = random_pose(rng, 0.3, 1.5);

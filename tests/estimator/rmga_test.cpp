@@ -11,13 +11,13 @@
 namespace rovctl::estimator {
 namespace {
 
-struct Fixture {
+struct RmgaFixture {
   testing::TestScene scene;
   HueSegmenter seg{scene.marker};
   MarkerFitness fitness{scene.rig, scene.marker, FitnessParams{}};
   GeneCodec codec{SearchVolume{}};
   cv::Mat l, r;
-  Fixture() {
+  RmgaFixture() {
     scene.render(hal::make_pose({0.05, 0.0, 0.5}, Eigen::Quaterniond::Identity()));
     seg.segment(scene.left_bgr, l);
     seg.segment(scene.right_bgr, r);
@@ -26,7 +26,7 @@ struct Fixture {
 };
 
 TEST(Rmga, SameSeedSameRun) {
-  Fixture f;
+  RmgaFixture f;
   Rmga a(GaParams{}, f.codec, f.fitness, 9), b(GaParams{}, f.codec, f.fitness, 9);
   a.evaluate_all();
   b.evaluate_all();
@@ -39,7 +39,7 @@ TEST(Rmga, SameSeedSameRun) {
 }
 
 TEST(Rmga, ElitismKeepsTheBestAndEvolutionImproves) {
-  Fixture f;
+  RmgaFixture f;
   // The faithful GA searches blind far from the marker, so one run may stall: every run must
   // climb, and the best of three by a clear margin.
   double largest_gain = 0.0;
@@ -64,7 +64,7 @@ TEST(Rmga, ElitismKeepsTheBestAndEvolutionImproves) {
 }
 
 TEST(Rmga, InsertReplacesTheWorst) {
-  Fixture f;
+  RmgaFixture f;
   Rmga ga(GaParams{}, f.codec, f.fitness, 4);
   ga.evaluate_all();
   Gene g;
@@ -81,7 +81,7 @@ const GaReading kReadings[] = {{"per_child", "children", "children", "binary"},
                                {"per_bit", "non_elite", "population", "binary"}};
 
 TEST(Rmga, EveryReadingKeepsTheBestAndImproves) {
-  Fixture f;
+  RmgaFixture f;
   for (const GaReading& reading : kReadings) {
     Rmga ga(GaParams{}, f.codec, f.fitness, 5, reading);
     ga.evaluate_all();
@@ -98,7 +98,7 @@ TEST(Rmga, EveryReadingKeepsTheBestAndImproves) {
 }
 
 TEST(Rmga, EvaluatingThePopulationChangesTheCostNotTheRun) {
-  Fixture f;
+  RmgaFixture f;
   Rmga children(GaParams{}, f.codec, f.fitness, 6, {"per_bit", "children", "children", "binary"});
   Rmga everyone(GaParams{}, f.codec, f.fitness, 6, {"per_bit", "children", "population", "binary"});
   children.evaluate_all();
@@ -114,7 +114,7 @@ TEST(Rmga, EvaluatingThePopulationChangesTheCostNotTheRun) {
 }
 
 TEST(Rmga, PerBitMutationFlipsAboutRateTimes72Bits) {
-  Fixture f;
+  RmgaFixture f;
   GaParams p;
   p.mutation_rate = 0.1;
   p.selection_rate = 0.5;
@@ -138,7 +138,7 @@ TEST(Rmga, PerBitMutationFlipsAboutRateTimes72Bits) {
 }
 
 TEST(Rmga, UnknownReadingIsAnError) {
-  Fixture f;
+  RmgaFixture f;
   EXPECT_THROW(
       Rmga(GaParams{}, f.codec, f.fitness, 1, {"per_gene", "children", "children", "binary"}),
       std::invalid_argument);

@@ -48,5 +48,23 @@ TEST(CliArgs, NumbersOutOfRangeOrMalformedAreUsageErrors) {
   EXPECT_THROW(parse({"--only"}), UsageError) << "an option without its value";
 }
 
+TEST(CliArgs, AscendingNumbersAreReadOrRefusedNamingTheOptionAndTheItem) {
+  EXPECT_TRUE(parse({}).get_ascending("--at", 0.0, 20.0, "ranges").empty());
+  EXPECT_EQ(parse({"--at", "0.3,1.5"}).get_ascending("--at", 0.0, 20.0, "ranges"),
+            (std::vector<double>{0.3, 1.5}));
+  for (const std::string value : {"1.5,0.3", "0.3,0.3", "0,1", "0.3,40", "0.3,1.5x", "nan"}) {
+    try {
+      parse({"--at", value}).get_ascending("--at", 0.0, 20.0, "ranges in (0, 20] m");
+      ADD_FAILURE() << "'" << value << "' was accepted";
+    } catch (const UsageError& e) {
+      const std::string what = e.what();
+      EXPECT_NE(what.find("rovctl faults: --at " + value + ": must be ranges in (0, 20] m"),
+                std::string::npos)
+          << what;
+      EXPECT_NE(what.find("(at '"), std::string::npos) << what;
+    }
+  }
+}
+
 }  // namespace
 }  // namespace rovctl::app

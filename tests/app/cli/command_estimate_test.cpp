@@ -111,7 +111,7 @@ TEST(CommandEstimate, AnEstimateNotOkSaysWhichTestItFailedAndByWhichKey) {
 }
 
 template <class Error>
-std::string error_of(const Words& words) {
+std::string estimate_error_of(const Words& words) {
   ::testing::internal::CaptureStdout();
   std::string message;
   try {
@@ -126,57 +126,65 @@ std::string error_of(const Words& words) {
 TEST(CommandEstimate, BadImagesNameTheFile) {
   const Files f;
   const std::string missing = (f.dir / "nope.png").string();
-  EXPECT_NE(error_of<ConfigError>({"--config", f.config, "--left", missing, "--right", f.right})
-                .find(missing + ": cannot read image"),
-            std::string::npos);
+  EXPECT_NE(
+      estimate_error_of<ConfigError>({"--config", f.config, "--left", missing, "--right", f.right})
+          .find(missing + ": cannot read image"),
+      std::string::npos);
   const std::string junk = f.write("junk.png", "not a png");
-  EXPECT_NE(error_of<ConfigError>({"--config", f.config, "--left", f.left, "--right", junk})
-                .find(junk + ": cannot read image"),
-            std::string::npos);
+  EXPECT_NE(
+      estimate_error_of<ConfigError>({"--config", f.config, "--left", f.left, "--right", junk})
+          .find(junk + ": cannot read image"),
+      std::string::npos);
   const std::string small = (f.dir / "small.png").string();
   cv::imwrite(small, cv::Mat(240, 320, CV_8UC3, cv::Scalar(1, 2, 3)));
-  EXPECT_NE(error_of<ConfigError>({"--config", f.config, "--left", small, "--right", f.right})
-                .find(small + ": image is 320x240 but the calibration"),
-            std::string::npos);
+  EXPECT_NE(
+      estimate_error_of<ConfigError>({"--config", f.config, "--left", small, "--right", f.right})
+          .find(small + ": image is 320x240 but the calibration"),
+      std::string::npos);
 }
 
 TEST(CommandEstimate, BadCalibrationAndConfigNameTheFileAndKey) {
   const Files f;
   const std::string bad_cal = f.write("cal.yaml", "%YAML:1.0\n---\nimage_size: [640, 480]\n");
   const std::string config = f.write("bad_cal_config.yaml", "calibration: " + bad_cal + "\n");
-  EXPECT_EQ(error_of<ConfigError>({"--config", config, "--left", f.left, "--right", f.right}),
-            bad_cal + ": missing key 'K1'");
+  EXPECT_EQ(
+      estimate_error_of<ConfigError>({"--config", config, "--left", f.left, "--right", f.right}),
+      bad_cal + ": missing key 'K1'");
   const std::string unknown =
       f.write("unknown.yaml", "calibration: " + kCalibration + "\nestimator:\n  populaton: 4\n");
-  EXPECT_NE(error_of<ConfigError>({"--config", unknown, "--left", f.left, "--right", f.right})
-                .find("estimator.populaton: unknown key"),
-            std::string::npos);
+  EXPECT_NE(
+      estimate_error_of<ConfigError>({"--config", unknown, "--left", f.left, "--right", f.right})
+          .find("estimator.populaton: unknown key"),
+      std::string::npos);
   const std::string range = f.write(
       "range.yaml", "calibration: " + kCalibration + "\nestimator:\n  ga:\n    population: 1\n");
-  EXPECT_NE(error_of<ConfigError>({"--config", range, "--left", f.left, "--right", f.right})
-                .find("estimator.ga.population: 1 is out of range"),
-            std::string::npos);
+  EXPECT_NE(
+      estimate_error_of<ConfigError>({"--config", range, "--left", f.left, "--right", f.right})
+          .find("estimator.ga.population: 1 is out of range"),
+      std::string::npos);
   const std::string crossed =
       f.write("crossed.yaml",
               "calibration: " + kCalibration + "\nestimator:\n  search:\n    z_min_m: 2.0\n");
-  EXPECT_NE(error_of<ConfigError>({"--config", crossed, "--left", f.left, "--right", f.right})
-                .find("estimator.search.z"),
-            std::string::npos);
+  EXPECT_NE(
+      estimate_error_of<ConfigError>({"--config", crossed, "--left", f.left, "--right", f.right})
+          .find("estimator.search.z"),
+      std::string::npos);
   const std::string no_file = (f.dir / "absent.yaml").string();
-  EXPECT_NE(error_of<ConfigError>({"--config", no_file, "--left", f.left, "--right", f.right})
-                .find("absent.yaml"),
-            std::string::npos);
+  EXPECT_NE(
+      estimate_error_of<ConfigError>({"--config", no_file, "--left", f.left, "--right", f.right})
+          .find("absent.yaml"),
+      std::string::npos);
 }
 
 TEST(CommandEstimate, UsageErrors) {
   const Files f;
-  EXPECT_NE(error_of<UsageError>({"--config", f.config, "--left", f.left}).find("--right"),
+  EXPECT_NE(estimate_error_of<UsageError>({"--config", f.config, "--left", f.left}).find("--right"),
             std::string::npos);
-  EXPECT_NE(error_of<UsageError>(
+  EXPECT_NE(estimate_error_of<UsageError>(
                 {"--config", f.config, "--left", f.left, "--right", f.right, "--frames", "0"})
                 .find("--frames"),
             std::string::npos);
-  EXPECT_NE(error_of<UsageError>({"--bogus"}).find("--bogus"), std::string::npos);
+  EXPECT_NE(estimate_error_of<UsageError>({"--bogus"}).find("--bogus"), std::string::npos);
 }
 
 }  // namespace

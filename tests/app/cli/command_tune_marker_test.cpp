@@ -92,5 +92,19 @@ TEST_F(CommandTuneMarker, RequiredOptionsAreNamed) {
   }
 }
 
+TEST_F(CommandTuneMarker, AWorkingRangeThatDoesNotParseIsAUsageErrorNamingIt) {
+  for (const char* bad : {"1.5", "1.5,0.3", "0.3,1.5x", "0,1", "0.3,40"}) {
+    try {
+      command_tune_marker(
+          {"--config", kConfig, "--pairs", kSample, "--out", path("t.yaml"), "--range-m", bad});
+      FAIL() << bad << " accepted";
+    } catch (const UsageError& e) {
+      EXPECT_NE(std::string(e.what()).find(std::string("--range-m ") + bad), std::string::npos)
+          << e.what();
+    }
+  }
+  EXPECT_FALSE(fs::exists(path("t.yaml")));
+}
+
 }  // namespace
 }  // namespace rovctl::app

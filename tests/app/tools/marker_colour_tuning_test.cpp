@@ -119,6 +119,56 @@ TEST(MarkerColourTuning, TheEstimatorGetsEveryPairRightWithTheTunedWindows) {
   EXPECT_EQ(scores.back().false_ok, 0);
 }
 
+TEST(MarkerColourTuning, ARecordingShortOfTheWorkingRangeIsSaidSo) {
+  // The sample's three pairs lie 1.06-1.11 m out, inside the default working range 0.3-1.5 m.
+  const ColourTuningResult& r = tuned();
+  EXPECT_NEAR(r.located_range_min_m, 1.06, 0.02);
+  EXPECT_NEAR(r.located_range_max_m, 1.11, 0.02);
+  EXPECT_FALSE(r.covers_far);
+  EXPECT_FALSE(r.covers_near);
+  int said = 0;
+  for (const std::string& note : r.notes) {
+    said += note.find("does not cover far range") != std::string::npos;
+    said += note.find("does not cover near range") != std::string::npos;
+  }
+  EXPECT_EQ(said, 2);
+}
+
+// A sphere whose hues fall 80 deg per metre (lows) and 50 (highs), with +-3 deg of scatter, seen
+// 0.4-1.2 m out: over a working range of 0.3-1.5 m the window follows the lows to 1.5 m and the
+// highs to 0.3 m, below and above every view.
+TEST(MarkerColourTuning, TheWindowFollowsTheHueDriftOverTheWorkingRange) {
+  std::vector<RangedHueExtremes> views;
+  for (int i = 0; i <= 8; ++i) {
+    const double r = 0.4 + 0.1 * i;
+    const double scatter = (i % 3 - 1) * 3.0;
+    views.push_back({r, 200.0 - 80.0 * r + scatter, 210.0 - 50.0 * r - scatter});
+  }
+  const HueDrift d = hue_drift_over_range(views, 0.3, 1.5);
+  EXPECT_NEAR(d.low_drift_deg_per_m, -80.0, 5.0);
+  EXPECT_NEAR(d.high_drift_deg_per_m, -50.0, 5.0);
+  EXPECT_NEAR(d.range_min_m, 0.4, 1e-9);
+  EXPECT_NEAR(d.range_max_m, 1.2, 1e-9);
+  EXPECT_NEAR(d.low_deg, 200.0 - 80.0 * 1.5, 8.0);
+  EXPECT_NEAR(d.high_deg, 210.0 - 50.0 * 0.3, 8.0);
+  double low = 1e9, high = -1e9;
+  for (const RangedHueExtremes& v : views) {
+    low = std::min(low, v.low_deg);
+    high = std::max(high, v.high_deg);
+  }
+  EXPECT_LT(d.low_deg, low - 5.0);
+  EXPECT_GT(d.high_deg, high + 3.0);
+  // A working range inside the views' adds nothing to their own extremes.
+  const HueDrift inside = hue_drift_over_range(views, 0.5, 1.1);
+  EXPECT_NEAR(inside.low_deg, low, 1e-9);
+  EXPECT_NEAR(inside.high_deg, high, 1e-9);
+  // Views spanning under 0.2 m give no drift to follow.
+  const std::vector<RangedHueExtremes> close = {views[3], views[4]};
+  const HueDrift none = hue_drift_over_range(close, 0.3, 1.5);
+  EXPECT_EQ(none.low_drift_deg_per_m, 0.0);
+  EXPECT_NEAR(none.low_deg, std::min(views[3].low_deg, views[4].low_deg), 1e-9);
+}
+
 TEST(MarkerColourTuning, TheFragmentLoadsAsTheConfigsMarkerSectionWithItsGeometry) {
   const ColourTuningResult& r = tuned();
   hal::MarkerModel loaded = hal::MarkerModel::standard();

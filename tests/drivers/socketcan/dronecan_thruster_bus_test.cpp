@@ -95,7 +95,7 @@ class DronecanBusTest : public ::testing::Test {
   DronecanParams params_;
 };
 
-hal::ThrusterCommand command_of(std::vector<double> f) {
+hal::ThrusterCommand dronecan_command_of(std::vector<double> f) {
   hal::ThrusterCommand c;
   for (std::size_t i = 0; i < f.size(); ++i) c.thrust_fraction[i] = f[i];
   c.count = f.size();
@@ -106,7 +106,8 @@ TEST_F(DronecanBusTest, NeutralAtOpenArmingAndCommands) {
   auto bus = make_bus(8);
   std::string error;
   ASSERT_TRUE(bus->open(error)) << error;
-  const hal::ThrusterCommand cmd = command_of({0.5, -0.25, 1.0, -1.0, 0.0, 2.0, NAN, 0.001});
+  const hal::ThrusterCommand cmd =
+      dronecan_command_of({0.5, -0.25, 1.0, -1.0, 0.0, 2.0, NAN, 0.001});
   EXPECT_EQ(bus->write(cmd), hal::BusStatus::ok);  // disarmed: neutral whatever is asked
   EXPECT_EQ(bus->arm(true), hal::BusStatus::ok);
   EXPECT_EQ(bus->write(cmd), hal::BusStatus::ok);
@@ -140,7 +141,8 @@ TEST_F(DronecanBusTest, ExactBytesOnTheWire) {
   ASSERT_EQ(bus->arm(true), hal::BusStatus::ok);
   drain();
   // The fractions of vector V1 ([8191, -1, 0, 4096]); third transfer -> transfer ID 2.
-  ASSERT_EQ(bus->write(command_of({1.0, -1.0 / 8191.0, 0.0, 4096.0 / 8191.0})), hal::BusStatus::ok);
+  ASSERT_EQ(bus->write(dronecan_command_of({1.0, -1.0 / 8191.0, 0.0, 4096.0 / 8191.0})),
+            hal::BusStatus::ok);
   const auto frames = drain();
   ASSERT_EQ(frames.size(), 1U);
   EXPECT_EQ(frames[0].can_id, 0x0804060AU | CAN_EFF_FLAG);
@@ -189,13 +191,13 @@ TEST_F(DronecanBusTest, BusOffIsAFaultUntilRestart) {
   send_raw(CAN_ERR_FLAG | CAN_ERR_CRTL, passive);
   hal::ThrusterTelemetry t;
   EXPECT_EQ(bus->read(t), hal::BusStatus::fault);
-  EXPECT_EQ(bus->write(command_of({0, 0, 0, 0})), hal::BusStatus::fault);
+  EXPECT_EQ(bus->write(dronecan_command_of({0, 0, 0, 0})), hal::BusStatus::fault);
   EXPECT_EQ(bus->can_counters().error_frames, 2U);
   EXPECT_EQ(bus->can_counters().bus_off_events, 1U);
   EXPECT_EQ(bus->can_counters().error_passive, 1U);
   send_raw(CAN_ERR_FLAG | CAN_ERR_RESTARTED, std::vector<std::uint8_t>(CAN_ERR_DLC, 0));
   bus->read(t);
-  EXPECT_EQ(bus->write(command_of({0, 0, 0, 0})), hal::BusStatus::ok);
+  EXPECT_EQ(bus->write(dronecan_command_of({0, 0, 0, 0})), hal::BusStatus::ok);
 }
 
 TEST_F(DronecanBusTest, LostBusFaultsAfterConsecutiveFailures) {
@@ -204,7 +206,7 @@ TEST_F(DronecanBusTest, LostBusFaultsAfterConsecutiveFailures) {
   ASSERT_TRUE(bus->open(error)) << error;
   ::close(fds_[1]);  // the bus is gone: every send fails
   fds_[1] = -1;
-  const hal::ThrusterCommand cmd = command_of({0.1, 0.1, 0.1, 0.1});
+  const hal::ThrusterCommand cmd = dronecan_command_of({0.1, 0.1, 0.1, 0.1});
   EXPECT_EQ(bus->write(cmd), hal::BusStatus::degraded);
   EXPECT_EQ(bus->write(cmd), hal::BusStatus::degraded);
   EXPECT_EQ(bus->write(cmd), hal::BusStatus::fault);
@@ -219,7 +221,7 @@ TEST(DronecanBusOpen, MissingInterfaceIsNamed) {
   std::string error;
   EXPECT_FALSE(bus.open(error));
   EXPECT_NE(error.find("rovctl_nocan0"), std::string::npos) << error;
-  EXPECT_EQ(bus.write(command_of({0.2})), hal::BusStatus::fault);
+  EXPECT_EQ(bus.write(dronecan_command_of({0.2})), hal::BusStatus::fault);
 }
 
 // On a kernel with SocketCAN and a vcan0 (modprobe vcan; ip link add vcan0 type vcan;
@@ -235,7 +237,7 @@ TEST(DronecanBusVcan, FramesReachAnotherSocket) {
   DronecanThrusterBus bus(p, 8);
   ASSERT_TRUE(bus.open(error)) << error;
   ASSERT_EQ(bus.arm(true), hal::BusStatus::ok);
-  ASSERT_EQ(bus.write(command_of({0.5, 0, 0, 0, 0, 0, 0, -0.5})), hal::BusStatus::ok);
+  ASSERT_EQ(bus.write(dronecan_command_of({0.5, 0, 0, 0, 0, 0, 0, -0.5})), hal::BusStatus::ok);
   dronecan::TransferReassembler rx(dronecan::kRawCommandId, dronecan::kRawCommandSignature);
   int transfers = 0;
   std::array<std::int16_t, dronecan::kMaxRawCommands> cmd{};

@@ -129,8 +129,14 @@ std::uint64_t fingerprint(const cv::Mat& image) {
 // The clear scenario is the renderer as it was before the scenarios existed, bit for bit: these
 // fingerprints were taken from that renderer (default options, so the sim's default noise too),
 // and the docking figures measured on it stay valid only while they hold. A deliberate change of
-// the clear look must update them, and say so.
+// the clear look must update them, and say so. They are x86-64's arithmetic: built for aarch64,
+// GCC fuses multiply-adds (one rounding, not two), which moves 84 of the first render's 921,600
+// bytes by one level, so there the renders are checked by the tests above and not bit for bit.
 TEST(SceneRenderer, ClearRendersAsBeforeTheScenarios) {
+#if !defined(__x86_64__)
+  GTEST_SKIP() << "the fingerprints are of the x86-64 build's arithmetic (this build fuses "
+                  "multiply-adds: a few bytes of a render differ by one level)";
+#endif
   const SceneRenderer r(distorted_camera(), MarkerModel::standard(), RenderOptions{});
   cv::Mat image;
   r.render(ahead(0.6), 42, image);
