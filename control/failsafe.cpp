@@ -5,7 +5,11 @@
 #include <stdexcept>
 #include <string>
 
+#include "hal/primitives/duration_seconds.hpp"
+
 namespace rovctl::control {
+
+using hal::seconds;
 
 const char* to_string(SafeAction a) {
   switch (a) {
@@ -53,8 +57,6 @@ bool thrusters_usable(FailsafeCause c) {
          c != FailsafeCause::disarm_unacked;
 }
 
-double seconds_of(std::chrono::nanoseconds d) { return std::chrono::duration<double>(d).count(); }
-
 bool finite_readings(const hal::SensorReadings& r) {
   if (r.depth_valid && !std::isfinite(r.depth_m)) return false;
   return !r.attitude_valid ||
@@ -91,8 +93,8 @@ FailsafeCause Failsafe::check(const FailsafeInput& in) {
   if (camera_timeouts_ > p_.camera_timeout_ticks) return FailsafeCause::vision_lost;
   if (in.grab == hal::GrabStatus::ok) {
     if (in.identical_frames >= p_.frozen_ticks) return FailsafeCause::vision_frozen;
-    if (seconds_of(in.frame_age) * 1e3 > p_.stale_ms) return FailsafeCause::vision_stale;
-    if (seconds_of(in.stereo_skew) * 1e3 > p_.stereo_skew_ms) return FailsafeCause::stereo_skew;
+    if (seconds(in.frame_age) * 1e3 > p_.stale_ms) return FailsafeCause::vision_stale;
+    if (seconds(in.stereo_skew) * 1e3 > p_.stereo_skew_ms) return FailsafeCause::stereo_skew;
   }
   if (in.bus == hal::BusStatus::fault) return FailsafeCause::bus_fault;
   if (bus_degraded_ > p_.bus_degraded_ticks) return FailsafeCause::bus_slow;
@@ -155,7 +157,7 @@ SafeAction Failsafe::update(const FailsafeInput& in) {
     started_ = true;
     last_now_ = in.now;
   }
-  if (in.mission != MissionState::charging) mission_s_ += seconds_of(in.now - last_now_);
+  if (in.mission != MissionState::charging) mission_s_ += seconds(in.now - last_now_);
   last_now_ = in.now;
   const FailsafeCause c = check(in);
   if (!tripped()) {
@@ -171,7 +173,7 @@ SafeAction Failsafe::update(const FailsafeInput& in) {
   if (backing_out_) {
     // Backed out, or the bus stopped delivering (or the back-out wrench is not finite): now the
     // safe state proper.
-    const bool backed_out = seconds_of(in.now - back_out_since_) >= p_.backout_s;
+    const bool backed_out = seconds(in.now - back_out_since_) >= p_.backout_s;
     const bool cannot_push = in.bus == hal::BusStatus::fault || !in.wrench_body.allFinite();
     if (backed_out || cannot_push) {
       backing_out_ = false;
@@ -185,7 +187,7 @@ SafeAction Failsafe::update(const FailsafeInput& in) {
     push_event(in, FailsafeEventKind::recovered, SafeAction::none);
     cause_ = FailsafeCause::none;
     recovered_ = true;
-  } else if (seconds_of(in.now - tripped_at_) > p_.recover_within_s) {
+  } else if (seconds(in.now - tripped_at_) > p_.recover_within_s) {
     latched_ = true;
     push_event(in, FailsafeEventKind::latched, action_);
   }

@@ -7,11 +7,12 @@
 #include <utility>
 
 #include "control/pd_visual_servo.hpp"
+#include "hal/primitives/duration_seconds.hpp"
 
 namespace rovctl::control {
 namespace {
 
-double seconds(std::chrono::nanoseconds d) { return std::chrono::duration<double>(d).count(); }
+using hal::seconds;
 
 // States in which the servo's integral (the trim against the current) carries over.
 bool servo_state(MissionState s) {
