@@ -13,7 +13,7 @@ void describe(hal::ParamVisitor& v, DisturbanceParams& p) {
   v.param("settle_s", p.settle_s,
           {"s", 0.0, 60.0, "... for this long (ALIGN's hold counts only settled frames)"});
   v.param("rate_cutoff_hz", p.rate_cutoff_hz,
-          {"Hz", 0.01, 15.0, "cut-off of the low-pass on the estimate's rate of change"});
+          {"Hz", 0.01, 15.0, "cut-off of the two low-pass poles on the estimate's rate of change"});
   v.param("beyond_hold_s", p.beyond_hold_s,
           {"s", 0.1, 600.0,
            "at its limit or with the thrusters saturated this long: current beyond hold"});

@@ -17,7 +17,7 @@ struct DisturbanceParams {
   // Share of the thrusters' force (or moment) along each axis the estimate may take; the rest is
   // left to the servo's P and D terms.
   double hold_fraction = 0.7;
-  // Settled: the horizontal force, low-passed at rate_cutoff_hz, changes slower than
+  // Settled: the horizontal force, low-passed twice at rate_cutoff_hz, changes slower than
   // settle_rate_nps for settle_s. ALIGN's hold counts only settled frames.
   double settle_rate_nps = 0.5;
   double settle_s = 1.5;

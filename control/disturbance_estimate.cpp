@@ -21,6 +21,7 @@ void DisturbanceEstimate::set_capacity(const Vector6d& capacity) {
 void DisturbanceEstimate::reset() {
   wrench_.setZero();
   held_.setConstant(false);
+  rate_stage_nps_.setZero();
   rate_body_nps_.setZero();
   rate_nps_ = 0.0;
   settled_for_s_ = 0.0;
@@ -57,9 +58,13 @@ void DisturbanceEstimate::integrate(const Vector6d& error, double dt_s, bool sat
   // Settling is judged on the integration alone, low-passed as a vector: a turn of the body (and
   // the estimate's heading noise, a few mrad a frame) moves the body-frame push without the
   // current changing, and the norm of a noisy difference would never fall to zero.
+  // Two poles: the integrand's rate term puts the estimator's frame-to-frame noise straight into
+  // the estimate (kd / kp of it, about 0.2 N under noise with block compression), and that
+  // jitter's derivative through one pole stays above any useful settle rate.
   const Eigen::Vector2d rate = (wrench_.head<2>() - before) / dt_s;
   const double alpha = 1.0 - std::exp(-2.0 * M_PI * p_.rate_cutoff_hz * dt_s);
-  rate_body_nps_ += alpha * (rate - rate_body_nps_);
+  rate_stage_nps_ += alpha * (rate - rate_stage_nps_);
+  rate_body_nps_ += alpha * (rate_stage_nps_ - rate_body_nps_);
   rate_nps_ = rate_body_nps_.norm();
 
   // Against the limit along the force's own direction: the box of per-axis limits, scaled.

@@ -57,7 +57,7 @@ class DisturbanceEstimate {
   // The horizontal force's magnitude against the limit along its direction (0..1).
   double hold_ratio() const { return hold_ratio_; }
   // The horizontal force's rate of change from the integration (not the turns), low-passed
-  // (N/s).
+  // twice at rate_cutoff_hz (N/s).
   double rate_nps() const { return rate_nps_; }
 
  private:
@@ -67,7 +67,8 @@ class DisturbanceEstimate {
   Vector6d limit_;
   Vector6d wrench_ = Vector6d::Zero();
   Eigen::Matrix<bool, 6, 1> held_ = Eigen::Matrix<bool, 6, 1>::Constant(false);
-  Eigen::Vector2d rate_body_nps_ = Eigen::Vector2d::Zero();  // low-passed integration rate
+  Eigen::Vector2d rate_stage_nps_ = Eigen::Vector2d::Zero();  // the rate through the first pole
+  Eigen::Vector2d rate_body_nps_ = Eigen::Vector2d::Zero();   // ... and the second
   double rate_nps_ = 0.0;
   double settled_for_s_ = 0.0;
   double at_limit_for_s_ = 0.0;
