@@ -33,6 +33,10 @@ struct TrialResult {
   std::string final_reason;  // of the last transition
   double end_s = 0.0;        // when the mission finished (docked or failed)
   bool thrust_after_end = false;
+  // In APPROACH: the marker's largest true bearing off the camera's axis (about the vertical),
+  // and the ticks it was out of the image.
+  double approach_bearing_max_rad = 0.0;
+  int approach_unseen_ticks = 0;
 };
 
 // Where a trial starts, relative to the docked pose: back along the docking axis, off it to
@@ -129,6 +133,7 @@ TrialResult run_trial(std::uint64_t seed, double current_mps, const TrialStart* 
     const Eigen::Vector3d p = T_cl_marker.translation();
     const bool in_view =
         p.z() > 0.15 && std::abs(p.x() / p.z()) < 0.55 && std::abs(p.y() / p.z()) < 0.42;
+    const double true_bearing_rad = std::abs(marker_bearing_rad(T_body_cl, T_cl_marker));
     T_cl_marker.translation() +=
         (0.001 + 0.004 * range) * Eigen::Vector3d(gauss(rng), gauss(rng), 2.0 * gauss(rng));
     const Eigen::Vector3d rot_noise =
@@ -149,6 +154,10 @@ TrialResult run_trial(std::uint64_t seed, double current_mps, const TrialStart* 
     in.disturbance_rising = servo.disturbance().rising();
     in.current_beyond_hold = servo.disturbance().beyond_hold();
     const MissionOutput out = mission.update(in);
+    if (out.state == MissionState::approach) {
+      r.approach_bearing_max_rad = std::max(r.approach_bearing_max_rad, true_bearing_rad);
+      r.approach_unseen_ticks += in_view ? 0 : 1;
+    }
     MissionEvent e;
     while (mission.pop_event(e)) {
       r.final_reason = e.reason;
@@ -232,23 +241,32 @@ TEST(DockingClosedLoop, DocksWithinTolerancesInCurrent) {
 
 // Found far off the docking axis, looking at the marker: the axis's heading is 49 deg away. A
 // pose-based servo turns there while it sways toward the axis, and the marker leaves the image
-// (the sim's recharge trial 33 lost it four times that way); turning only as far as keeps the
-// marker in view docks without an abort.
+// (the sim's recharge trial 33 lost it four times that way). Turning only as far as keeps the
+// marker within mission.approach_view_bearing_rad (15 deg) holds it there, within a degree and a
+// half, through the whole approach and docks without an abort. The free turn (no bound) swings it
+// to about 27 deg, 2 deg inside the image's edge (atan 0.55: 29 deg); this noise-free plant keeps
+// it just inside, but a frame's latency or a gust more would lose it.
 TEST(DockingClosedLoop, KeepsTheMarkerInViewFromFarOffTheAxis) {
   TrialStart start;
   start.back_m = 1.2;
   start.starboard_m = 1.4;
   start.heading_rad = std::atan2(-start.starboard_m, start.back_m);  // toward the marker
+  const double bound_rad = MissionParams{}.approach_view_bearing_rad;
   for (std::uint64_t seed = 1; seed <= 3; ++seed) {
     const TrialResult kept = run_trial(seed, 0.0, &start);
     const TrialResult turned = run_trial(seed, 0.0, &start, 0.0);
     std::printf(
-        "seed %d: kept in view: docked %d aborts %d t %.1f s; free turn: docked %d aborts %d\n",
-        static_cast<int>(seed), kept.docked, kept.aborts, kept.time_s, turned.docked,
-        turned.aborts);
+        "seed %d: kept in view: docked %d aborts %d t %.1f s bearing max %.1f deg unseen %d; "
+        "free turn: docked %d aborts %d bearing max %.1f deg unseen %d\n",
+        static_cast<int>(seed), kept.docked, kept.aborts, kept.time_s,
+        kept.approach_bearing_max_rad * 180.0 / M_PI, kept.approach_unseen_ticks, turned.docked,
+        turned.aborts, turned.approach_bearing_max_rad * 180.0 / M_PI,
+        turned.approach_unseen_ticks);
     EXPECT_TRUE(kept.docked) << "seed " << seed;
     EXPECT_EQ(kept.aborts, 0) << "seed " << seed;
-    EXPECT_GE(turned.aborts, 1) << "seed " << seed;
+    EXPECT_EQ(kept.approach_unseen_ticks, 0) << "seed " << seed;
+    EXPECT_LE(kept.approach_bearing_max_rad, bound_rad + 1.5 * M_PI / 180.0) << "seed " << seed;
+    EXPECT_GT(turned.approach_bearing_max_rad, 1.5 * bound_rad) << "seed " << seed;
   }
 }
 
