@@ -261,6 +261,9 @@ void describe(hal::ParamVisitor& v, MissionParams& p) {
           {"m", 0.001, 1.0, "DOCK aborts beyond this lateral error"});
   v.param("dock_abort_yaw_rad", p.dock_abort_yaw_rad,
           {"rad", 0.001, 3.2, "DOCK aborts beyond this yaw error"});
+  v.param("dock_wait_lateral_m", p.dock_wait_lateral_m,
+          {"m", 0.001, 1.0,
+           "DOCK's set-point waits where it is while the probe is seen this far off the axis"});
   v.param("dock_abort_frames", p.dock_abort_frames,
           {"frames", 1, 1000, "consecutive frames past the dock abort limits before aborting"});
   v.param("dock_timeout_s", p.dock_timeout_s, {"s", 1.0, 3600.0, "DOCK time limit (then ABORT)"});

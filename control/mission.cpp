@@ -490,7 +490,10 @@ void Mission::dock_outputs(const Sight& s, MissionOutput& out) {
   // the sim's occluders scenario; servoing on it 0.4 m out turned the vehicle past the yaw
   // limit, and holding alone let the current carry it 30 mm off the axis in 2 s. In the blind
   // zone the push goes on: on the servo when the view is full or aided, else blind.
-  if (s.seen_dock) dock_pushed_ += s.tick;
+  // A gust that carries the probe off the axis near the socket would have it touch off the axis
+  // before the current's estimate catches up: the set-point waits until the servo brings it back.
+  const bool off_axis = s.full && s.err.lateral_m > p_.dock_wait_lateral_m;
+  if (s.seen_dock && !off_axis) dock_pushed_ += s.tick;
   const double back = std::max(dock_start_back_m_ - p_.dock_speed_mps * seconds(dock_pushed_),
                                -p_.dock_overshoot_m);
   out.T_cl_marker_desired = offset_along_docking_axis(T_docked_, back);

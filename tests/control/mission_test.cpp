@@ -232,6 +232,24 @@ TEST_F(MissionTest, APassingOccluderPausesTheDockWithoutAborting) {
   EXPECT_EQ(m.aborts(), 0);
 }
 
+// A gust carries the probe off the axis near the socket: the set-point waits where it is (the
+// servo brings the probe back) rather than pushing it in off the axis; back on it, the push goes
+// on.
+TEST_F(MissionTest, DockWaitsWhileTheProbeIsOffTheAxis) {
+  Mission m = make();
+  to_dock(m);
+  const double off_m = 2.0 * params.dock_wait_lateral_m;  // under dock_abort_lateral_m
+  ASSERT_LT(off_m, params.dock_abort_lateral_m);
+  MissionOutput out = tick(m, true, seen_at({0.3, 0, 0}));
+  const double before = out.T_cl_marker_desired.translation().norm();
+  for (int k = 0; k < 30; ++k) out = tick(m, true, seen_at({0.3, 0, off_m}));
+  EXPECT_EQ(out.state, MissionState::dock);
+  EXPECT_NEAR(out.T_cl_marker_desired.translation().norm(), before, 1e-9);
+  out = tick(m, true, seen_at({0.3, 0, 0.5 * params.dock_wait_lateral_m}));
+  EXPECT_LT(out.T_cl_marker_desired.translation().norm(), before - 1e-4) << "the push goes on";
+  EXPECT_EQ(m.aborts(), 0);
+}
+
 TEST_F(MissionTest, MarkerLostMidApproachAbortsAndSearchesAtOnceWithoutBackingOff) {
   Mission m = make();
   to_approach(m);
