@@ -10,6 +10,7 @@
 #include <random>
 #include <string>
 
+#include "control/attitude_stabilizer.hpp"
 #include "control/control_allocation_pseudo_inverse.hpp"
 #include "control/mission.hpp"
 #include "control/pd_visual_servo.hpp"
@@ -47,6 +48,10 @@ struct TrialStart {
   double heading_rad = 0.0;
 };
 
+// Beyond this range the marker counts as not found (a current that carries the vehicle off must
+// take it out of sight, as in the water).
+constexpr double kVisibleRangeM = 3.5;
+
 TrialResult run_trial(std::uint64_t seed, double current_mps, const TrialStart* start = nullptr,
                       double view_bearing_rad = MissionParams{}.approach_view_bearing_rad,
                       const Eigen::Vector3d* current_world_mps = nullptr) {
@@ -75,6 +80,7 @@ TrialResult run_trial(std::uint64_t seed, double current_mps, const TrialStart* 
   mission_params.approach_view_bearing_rad = view_bearing_rad;
   const ControlAllocator allocator(geometry.thrusters, control.allocation);
   PdVisualServo servo(control.servo, T_body_cl);
+  const AttitudeStabilizer stabilizer(control.attitude);
   servo.set_capacity(allocator.axis_capacity());
   Mission mission(mission_params, T_body_cl, docked, geometry.probe_tip_body_m);
 
@@ -127,12 +133,13 @@ TrialResult run_trial(std::uint64_t seed, double current_mps, const TrialStart* 
       r.yaw_deg = std::abs(std::atan2(x.y(), x.x())) * 180.0 / M_PI;
     }
 
-    // The estimate: truth plus noise growing with range, seen when the marker is in view.
+    // The estimate: truth plus noise growing with range, seen when the marker is in the image and
+    // within the range the estimator finds it at.
     Eigen::Isometry3d T_cl_marker = (T_world_body * T_body_cl).inverse() * T_world_marker;
     const double range = T_cl_marker.translation().norm();
     const Eigen::Vector3d p = T_cl_marker.translation();
-    const bool in_view =
-        p.z() > 0.15 && std::abs(p.x() / p.z()) < 0.55 && std::abs(p.y() / p.z()) < 0.42;
+    const bool in_view = p.z() > 0.15 && std::abs(p.x() / p.z()) < 0.55 &&
+                         std::abs(p.y() / p.z()) < 0.42 && range < kVisibleRangeM;
     const double true_bearing_rad = std::abs(marker_bearing_rad(T_body_cl, T_cl_marker));
     T_cl_marker.translation() +=
         (0.001 + 0.004 * range) * Eigen::Vector3d(gauss(rng), gauss(rng), 2.0 * gauss(rng));
@@ -190,6 +197,18 @@ TrialResult run_trial(std::uint64_t seed, double current_mps, const TrialStart* 
       w = servo.update(T_cl_marker, out.T_cl_marker_desired, 33ms);
     } else if (out.use_override) {
       w += out.wrench_override_body;
+    }
+    {
+      // Roll and pitch held level from the attitude, as the vehicle loop does: left to the
+      // servo's damping alone, this plant pitched 25-40 deg nose up in a long approach, the
+      // heave trim then learnt the approach's error tipped into body z, and the vehicle climbed
+      // out of view.
+      hal::SensorReadings readings;
+      readings.attitude_valid = true;
+      readings.q_world_body = s.q_world_body;
+      readings.omega_body_radps = s.omega_body_radps();
+      Eigen::Vector2d level_nm;
+      if (stabilizer.update(readings, level_nm)) w.segment<2>(3) = level_nm;
     }
     hal::ThrusterCommand cmd;
     if (out.thrusters_enabled) {
@@ -272,9 +291,10 @@ TEST(DockingClosedLoop, KeepsTheMarkerInViewFromFarOffTheAxis) {
 
 // A current the thrusters cannot hold (0.8 m/s across the docking axis; the BlueROV2 Heavy holds
 // about 0.6 m/s sideways): the mission ends FAILED "current beyond hold" in bounded time, not in
-// retries until the mission timer, and leaves the thrusters neutral. The current sweeps the marker
-// from view before the estimate reaches its limit: the first loss searches again, the second
-// (mission.beyond_hold_losses) ends it.
+// retries until the mission timer, and leaves the thrusters neutral. Levelled, the vehicle gives
+// way slowly (19-41 s to be carried out of kVisibleRangeM) with the estimate at its limit, so the
+// first loss ends it; a marker swept from view while the estimate still rises ends it at the
+// second (mission.beyond_hold_losses).
 TEST(DockingClosedLoop, ACurrentBeyondTheThrustersEndsTheMissionAsBeyondHold) {
   const Eigen::Vector3d across(0.0, 0.8, 0.0);  // the marker's axis points north: this is east
   for (std::uint64_t seed : {1u, 2u, 3u}) {
@@ -282,7 +302,7 @@ TEST(DockingClosedLoop, ACurrentBeyondTheThrustersEndsTheMissionAsBeyondHold) {
         run_trial(seed, 0.0, nullptr, MissionParams{}.approach_view_bearing_rad, &across);
     EXPECT_EQ(r.final_state, MissionState::failed) << "seed " << seed;
     EXPECT_EQ(r.final_reason, "current beyond hold") << "seed " << seed;
-    EXPECT_LT(r.end_s, 40.0) << "seed " << seed;
+    EXPECT_LT(r.end_s, 60.0) << "seed " << seed;
     EXPECT_FALSE(r.thrust_after_end) << "seed " << seed;
     EXPECT_LE(r.aborts, 1) << "seed " << seed;
   }
