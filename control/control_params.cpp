@@ -264,6 +264,11 @@ void describe(hal::ParamVisitor& v, MissionParams& p) {
   v.param("dock_wait_lateral_m", p.dock_wait_lateral_m,
           {"m", 0.001, 1.0,
            "DOCK's set-point waits where it is while the probe is seen this far off the axis"});
+  v.param(
+      "dock_wait_filter_s", p.dock_wait_filter_s,
+      {"s", 0.0, 5.0,
+       "time constant of the lateral error DOCK's wait judges: a vibrating mount's swing "
+       "(tenths of a second) averages out, a gust's drift (seconds) does not; 0: each frame's"});
   v.param("dock_abort_frames", p.dock_abort_frames,
           {"frames", 1, 1000, "consecutive frames past the dock abort limits before aborting"});
   v.param("dock_timeout_s", p.dock_timeout_s, {"s", 1.0, 3600.0, "DOCK time limit (then ABORT)"});

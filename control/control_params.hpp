@@ -268,6 +268,7 @@ struct MissionParams {
   // The set-point waits where it is while the probe is seen this far off the axis (a gust that
   // the current's estimate has not caught up with yet), until the servo brings it back.
   double dock_wait_lateral_m = 0.006;
+  double dock_wait_filter_s = 0.2;
   // Consecutive frames beyond those limits before the dock aborts: one outlier estimate (a
   // rotated pose that scores well near the socket) must not throw away a good approach.
   int dock_abort_frames = 3;

@@ -135,6 +135,7 @@ void Mission::enter(MissionState to, std::chrono::nanoseconds now, const char* r
   dock_off_frames_ = 0;
   blind_since_ = std::chrono::nanoseconds{-1};
   dock_pushed_ = std::chrono::nanoseconds{0};
+  dock_lateral_lp_valid_ = false;
   partial_since_ = std::chrono::nanoseconds{-1};
   unseated_since_ = no_current_since_ = overload_since_ = swing_since_ =
       std::chrono::nanoseconds{-1};
@@ -492,7 +493,18 @@ void Mission::dock_outputs(const Sight& s, MissionOutput& out) {
   // zone the push goes on: on the servo when the view is full or aided, else blind.
   // A gust that carries the probe off the axis near the socket would have it touch off the axis
   // before the current's estimate catches up: the set-point waits until the servo brings it back.
-  const bool off_axis = s.full && s.err.lateral_m > p_.dock_wait_lateral_m;
+  // Judged on the error low-passed: a camera on a vibrating mount sees the probe swing by
+  // millimetres at several hertz, which is no drift and would stall the push.
+  if (s.full) {
+    const double tau_s = p_.dock_wait_filter_s;
+    const double share =
+        !dock_lateral_lp_valid_ || tau_s <= 0.0 ? 1.0 : 1.0 - std::exp(-seconds(s.tick) / tau_s);
+    dock_lateral_lp_x_m_ += share * (s.err.lateral_x_m - dock_lateral_lp_x_m_);
+    dock_lateral_lp_y_m_ += share * (s.err.lateral_y_m - dock_lateral_lp_y_m_);
+    dock_lateral_lp_valid_ = true;
+  }
+  const bool off_axis =
+      s.full && std::hypot(dock_lateral_lp_x_m_, dock_lateral_lp_y_m_) > p_.dock_wait_lateral_m;
   if (s.seen_dock && !off_axis) dock_pushed_ += s.tick;
   const double back = std::max(dock_start_back_m_ - p_.dock_speed_mps * seconds(dock_pushed_),
                                -p_.dock_overshoot_m);

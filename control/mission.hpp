@@ -237,6 +237,9 @@ class Mission {
   // DOCK's push runs on the full view only: the time it has run, and since when the view is
   // partial (a passing bar, a bubble on a sphere) while the push waits.
   std::chrono::nanoseconds dock_pushed_{0};
+  // The full view's lateral error (marker-frame x, y), low-passed for the wait.
+  double dock_lateral_lp_x_m_ = 0.0, dock_lateral_lp_y_m_ = 0.0;
+  bool dock_lateral_lp_valid_ = false;
   std::chrono::nanoseconds partial_since_{-1};
   std::chrono::nanoseconds last_now_{-1};
   // Recharging.

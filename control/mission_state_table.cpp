@@ -118,7 +118,7 @@ const std::array<MissionStateRow, kMissionStateCount> kTable = {{
     {S::dock, "ALIGN held aligned; CHARGING's probe unseated (a re-seat)", kDockExits,
      "servo to a set-point moving in at `mission.dock_speed_mps` (on a full or attitude-aided "
      "view; it waits while the full view puts the probe more than `mission.dock_wait_lateral_m` "
-     "off the axis); in "
+     "off the axis, its error low-passed over `mission.dock_wait_filter_s`); in "
      "the blind zone without one the push `mission.dock_blind_push_n` along the docked axis; a "
      "re-seat "
      "adds `mission.recharge.charge_push_n`"},
