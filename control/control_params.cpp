@@ -171,6 +171,15 @@ void describe(hal::ParamVisitor& v, ThrusterHealthParams& p) {
 void describe(hal::ParamVisitor& v, RechargeParams& p) {
   v.param("charge_push_n", p.charge_push_n,
           {"N", 0.0, 200.0, "CHARGING: feed-forward push along the docking axis"});
+  v.param("seat_trim_rise_nps", p.seat_trim_rise_nps,
+          {"N/s", 0.0, 100.0,
+           "CHARGING: the push grows at this rate while the probe slips out of the seat (the "
+           "contact lost, or seen seat_slip_m short of its deepest), up to overload_force_n"});
+  v.param("seat_trim_decay_nps", p.seat_trim_decay_nps,
+          {"N/s", 0.0, 100.0, "CHARGING: the added push shrinks at this rate while seated"});
+  v.param("seat_slip_m", p.seat_slip_m,
+          {"m", 0.0005, 0.05,
+           "CHARGING: the probe seen this far short of the deepest it sat is slipping out"});
   v.param("soc_complete_fraction", p.soc_complete_fraction,
           {"-", 0.0, 1.0, "state of charge that completes the charge"});
   v.param("complete_current_a", p.complete_current_a,
@@ -261,9 +270,14 @@ void describe(hal::ParamVisitor& v, MissionParams& p) {
           {"m", 0.001, 1.0, "DOCK aborts beyond this lateral error"});
   v.param("dock_abort_yaw_rad", p.dock_abort_yaw_rad,
           {"rad", 0.001, 3.2, "DOCK aborts beyond this yaw error"});
-  v.param("dock_wait_lateral_m", p.dock_wait_lateral_m,
-          {"m", 0.001, 1.0,
-           "DOCK's set-point waits where it is while the probe is seen this far off the axis"});
+  v.param(
+      "dock_wait_lateral_m", p.dock_wait_lateral_m,
+      {"m", 0.001, 1.0, "DOCK's set-point waits while the probe is seen this far off the axis"});
+  v.param("dock_wait_backoff_m", p.dock_wait_backoff_m,
+          {"m", 0.0, 0.2,
+           "while DOCK waits, its set-point stays at least this far behind the probe: a "
+           "set-point left ahead, where the servo's lag put it, carries the probe on into the "
+           "station face off the axis"});
   v.param(
       "dock_wait_filter_s", p.dock_wait_filter_s,
       {"s", 0.0, 5.0,

@@ -187,6 +187,8 @@ void Mission::restart(std::chrono::nanoseconds now, const char* reason) {
   charging_started_ = charge_complete_ = abort_after_undock_ = final_abort_ = false;
   keep_axial_trim_ = restore_axial_trim_ = false;
   reseats_ = 0;
+  seat_trim_n_ = 0.0;
+  seat_deepest_valid_ = false;
   dock_start_back_m_ = p_.standoff_m;
 }
 
@@ -436,7 +438,8 @@ MissionOutput Mission::outputs(const Sight& s) {
       out.T_cl_marker_desired =
           s.seen_dock ? offset_along_docking_axis(T_docked_, -s.err.axial_m) : T_docked_;
       servo_when(s.seen_dock, out);
-      out.push_body.head<3>() = docked_axis_body_ * p_.recharge.charge_push_n;
+      update_seat_trim(s);
+      out.push_body.head<3>() = docked_axis_body_ * (p_.recharge.charge_push_n + seat_trim_n_);
       break;
     case MissionState::undock:
       undock_outputs(s, out);
@@ -506,16 +509,43 @@ void Mission::dock_outputs(const Sight& s, MissionOutput& out) {
   const bool off_axis =
       s.full && std::hypot(dock_lateral_lp_x_m_, dock_lateral_lp_y_m_) > p_.dock_wait_lateral_m;
   if (s.seen_dock && !off_axis) dock_pushed_ += s.tick;
+  if (off_axis) {
+    // The servo lags the ramp by centimetres at the dock speed: waiting with the set-point where
+    // it was let the probe coast 2 cm on and meet the face 20-40 mm off the axis in a gust.
+    const double wait_back_m = -s.err.axial_m + p_.dock_wait_backoff_m;
+    const double pushed_max_s =
+        std::max(0.0, (dock_start_back_m_ - wait_back_m) / p_.dock_speed_mps);
+    dock_pushed_ = std::min(dock_pushed_, std::chrono::duration_cast<std::chrono::nanoseconds>(
+                                              std::chrono::duration<double>(pushed_max_s)));
+  }
   const double back = std::max(dock_start_back_m_ - p_.dock_speed_mps * seconds(dock_pushed_),
                                -p_.dock_overshoot_m);
   out.T_cl_marker_desired = offset_along_docking_axis(T_docked_, back);
   // steer_dock, and the aided wait
   servo_when(s.full || (s.seen && s.in.attitude_aided), out);
-  // A re-seat keeps pressing while it slides back in.
-  if (charging_started_) out.push_body.head<3>() = docked_axis_body_ * p_.recharge.charge_push_n;
+  // A re-seat keeps pressing while it slides back in, the harder for having slipped out.
+  if (charging_started_) {
+    update_seat_trim(s);
+    out.push_body.head<3>() = docked_axis_body_ * (p_.recharge.charge_push_n + seat_trim_n_);
+  }
   if (!s.steer_dock && blind_since_.count() >= 0) {
     out.wrench_override_body.head<3>() = docked_axis_body_ * p_.dock_blind_push_n;
   }
+}
+
+void Mission::update_seat_trim(const Sight& s) {
+  const RechargeParams& r = p_.recharge;
+  bool slipping = state_ == MissionState::dock || (p_.contact_switch && !s.in.contact);
+  if (s.seen_dock && state_ == MissionState::charging) {
+    seat_deepest_m_ =
+        seat_deepest_valid_ ? std::max(seat_deepest_m_, s.err.axial_m) : s.err.axial_m;
+    seat_deepest_valid_ = true;
+    slipping = slipping || s.err.axial_m < seat_deepest_m_ - r.seat_slip_m;
+  }
+  const double dt_s = seconds(s.tick);
+  seat_trim_n_ = slipping ? std::min(seat_trim_n_ + r.seat_trim_rise_nps * dt_s,
+                                     std::max(0.0, r.overload_force_n - r.charge_push_n))
+                          : std::max(seat_trim_n_ - r.seat_trim_decay_nps * dt_s, 0.0);
 }
 
 void Mission::undock_outputs(const Sight& s, MissionOutput& out) const {

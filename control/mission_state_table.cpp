@@ -117,11 +117,11 @@ const std::array<MissionStateRow, kMissionStateCount> kTable = {{
      "servo to the stand-off; unseen: hold"},
     {S::dock, "ALIGN held aligned; CHARGING's probe unseated (a re-seat)", kDockExits,
      "servo to a set-point moving in at `mission.dock_speed_mps` (on a full or attitude-aided "
-     "view; it waits while the full view puts the probe more than `mission.dock_wait_lateral_m` "
-     "off the axis, its error low-passed over `mission.dock_wait_filter_s`); in "
-     "the blind zone without one the push `mission.dock_blind_push_n` along the docked axis; a "
-     "re-seat "
-     "adds `mission.recharge.charge_push_n`"},
+     "view; it waits, at least `mission.dock_wait_backoff_m` behind the probe, while the full "
+     "view puts the probe more than `mission.dock_wait_lateral_m` off the axis, its error "
+     "low-passed over `mission.dock_wait_filter_s`); in the blind zone without one the push "
+     "`mission.dock_blind_push_n` along the docked axis; a re-seat adds "
+     "`mission.recharge.charge_push_n` and the seat trim"},
     {S::docked, "DOCK made contact", kDockedExits, "neutral (the docking mission ends here)"},
     {S::abort,
      "APPROACH, ALIGN or DOCK gave up (counted); UNDOCK after the re-seats ran out (the final "
@@ -137,7 +137,8 @@ const std::array<MissionStateRow, kMissionStateCount> kTable = {{
      "neutral"},
     {S::charging, "DOCKED on the recharging mission", kChargingExits,
      "servo on lateral and yaw, the set-point following the probe; the push "
-     "`mission.recharge.charge_push_n` along the docked axis; the axial trim DOCK kept, not "
+     "`mission.recharge.charge_push_n` along the docked axis plus the seat trim (rising while "
+     "the probe slips out, `mission.recharge.seat_trim_rise_nps`); the axial trim DOCK kept, not "
      "integrated"},
     {S::undock, "CHARGING ends the charge; a failsafe at the station backs out", kUndockExits,
      "servo to a set-point moving out at `mission.recharge.undock_speed_mps` to the stand-off; "

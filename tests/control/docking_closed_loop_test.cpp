@@ -237,7 +237,8 @@ TrialResult run_trial(std::uint64_t seed, double current_mps, const TrialStart* 
 }
 
 TEST(DockingClosedLoop, DocksWithinTolerancesInCurrent) {
-  const int trials = std::getenv("ROVCTL_TRIALS") ? std::atoi(std::getenv("ROVCTL_TRIALS")) : 20;
+  // 100 trials: the bar is 90 %, and over 20 one trial drifting in the blind push is 5 % of it.
+  const int trials = std::getenv("ROVCTL_TRIALS") ? std::atoi(std::getenv("ROVCTL_TRIALS")) : 100;
   int success = 0;
   double worst_lateral = 0.0, worst_yaw = 0.0;
   for (int i = 0; i < trials; ++i) {
@@ -255,7 +256,7 @@ TEST(DockingClosedLoop, DocksWithinTolerancesInCurrent) {
               worst_lateral * 1e3, worst_yaw);
   // The full target (>= 95 % over 100 trials) is measured with the estimator by `rovctl sim`;
   // here the control stack alone must not be the reason it is missed.
-  EXPECT_GE(success, 18);
+  EXPECT_GE(success, trials * 9 / 10);
 }
 
 // Found far off the docking axis, looking at the marker: the axis's heading is 49 deg away. A

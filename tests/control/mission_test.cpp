@@ -262,6 +262,36 @@ TEST_F(MissionTest, DockWaitsWhileTheProbeIsOffTheAxis) {
   EXPECT_EQ(m.aborts(), 0);
 }
 
+// The servo lags DOCK's ramp by centimetres: a wait that left the set-point where the ramp had
+// put it would let the probe coast on into the face off the axis.
+TEST_F(MissionTest, DockWaitHoldsTheSetPointBehindTheProbe) {
+  Mission m = make();
+  to_dock(m);
+  // How far back from docked along the axis a pose seen_at() puts the marker.
+  auto back_m = [this](const Eigen::Isometry3d& T_cl_marker) {
+    return (T_body_cl * T_cl_marker * docked.inverse() * T_body_cl.inverse()).translation().x();
+  };
+  const double probe_back_m = 0.1;
+  MissionOutput out;
+  // The probe stays 10 cm out while the ramp runs on past it.
+  const int ramp_ticks = static_cast<int>((params.standoff_m / params.dock_speed_mps) / 0.033);
+  for (int k = 0; k < ramp_ticks; ++k) out = tick(m, true, seen_at({probe_back_m, 0, 0}));
+  ASSERT_EQ(out.state, MissionState::dock);
+  ASSERT_LT(back_m(out.T_cl_marker_desired), probe_back_m - 0.05) << "the ramp ran ahead";
+  // A gust carries it off the axis: the set-point comes back behind the probe and stays there.
+  const double off_m = 2.0 * params.dock_wait_lateral_m;
+  for (int k = 0; k < 10; ++k) out = tick(m, true, seen_at({probe_back_m, 0, off_m}));
+  EXPECT_NEAR(back_m(out.T_cl_marker_desired), probe_back_m + params.dock_wait_backoff_m, 1e-9);
+  for (int k = 0; k < 20; ++k) out = tick(m, true, seen_at({probe_back_m, 0, off_m}));
+  EXPECT_NEAR(back_m(out.T_cl_marker_desired), probe_back_m + params.dock_wait_backoff_m, 1e-9);
+  // Back on the axis, the push goes on from there, not from where the ramp had been.
+  for (int k = 0; k < 20; ++k) out = tick(m, true, seen_at({probe_back_m, 0, 0}));
+  const double resumed_m = back_m(out.T_cl_marker_desired);
+  EXPECT_LT(resumed_m, probe_back_m + params.dock_wait_backoff_m);
+  EXPECT_GT(resumed_m, probe_back_m - 0.05);
+  EXPECT_EQ(m.aborts(), 0);
+}
+
 TEST_F(MissionTest, MarkerLostMidApproachAbortsAndSearchesAtOnceWithoutBackingOff) {
   Mission m = make();
   to_approach(m);
