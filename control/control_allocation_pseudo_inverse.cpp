@@ -1,9 +1,11 @@
-// Weighted pseudo-inverse allocation with direction-preserving saturation.
+// Weighted pseudo-inverse allocation; saturation keeps heave and the moments, scaling surge and
+// sway.
 #include "control/control_allocation_pseudo_inverse.hpp"
 
 #include <Eigen/SVD>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 namespace rovctl::control {
@@ -122,25 +124,77 @@ void ControlAllocator::neutral(hal::ThrusterCommand& command) const {
   command.count = channel_count_;
 }
 
-double ControlAllocator::allocate(const Wrench& wrench_body, hal::ThrusterCommand& command) const {
-  neutral(command);
-  if (!wrench_body.allFinite()) return 0.0;
-  const ThrustVector thrust = mix_ * wrench_body;
-  const std::size_t n = effectiveness_.count();
+double ControlAllocator::busiest(const ThrustVector& thrust) const {
   double worst = 0.0;  // largest |thrust| / limit over the thrusters
-  for (std::size_t i = 0; i < n; ++i) {
+  for (std::size_t i = 0; i < effectiveness_.count(); ++i) {
     const double f = thrust[static_cast<Eigen::Index>(i)];
     worst = std::max(worst, std::abs(f) / effectiveness_.limit_n(i, f));
   }
-  // One common scale for all thrusters keeps the wrench's direction; the clip after it only
-  // removes rounding.
-  const double scale = worst > 1.0 ? 1.0 / worst : 1.0;
-  for (std::size_t i = 0; i < n; ++i) {
-    const double f = thrust[static_cast<Eigen::Index>(i)] * scale;
+  return worst;
+}
+
+double ControlAllocator::horizontal_share(const ThrustVector& held,
+                                          const ThrustVector& horizontal) const {
+  // Thruster i takes held_i + s horizontal_i; the largest s in [0, 1] that keeps every thruster
+  // within its limit in the direction it is pushed.
+  double s = 1.0;
+  for (std::size_t i = 0; i < effectiveness_.count(); ++i) {
+    const double a = held[static_cast<Eigen::Index>(i)];
+    const double b = horizontal[static_cast<Eigen::Index>(i)];
+    if (b > 0.0) s = std::min(s, (effectiveness_.max_forward_n(i) - a) / b);
+    if (b < 0.0) s = std::min(s, (a + effectiveness_.max_reverse_n(i)) / -b);
+  }
+  return std::clamp(s, 0.0, 1.0);
+}
+
+double ControlAllocator::allocate(const Wrench& wrench_body, hal::ThrusterCommand& command) const {
+  neutral(command);
+  if (!wrench_body.allFinite()) return 0.0;
+  ThrustVector thrust = mix_ * wrench_body;
+  double fraction = 1.0;
+  if (busiest(thrust) > 1.0) {
+    // Heave, roll, pitch and yaw first, surge and sway with what is left (as ArduSub's mixer
+    // gives up throttle and forward before attitude): scaling the whole wrench against a current
+    // that takes the horizontal thrusters would also cut the heave and yaw that hold the
+    // stand-off and the heading, and the vehicle bobs and swings while it holds.
+    Wrench held_wrench = wrench_body;
+    held_wrench[0] = held_wrench[1] = 0.0;
+    const ThrustVector held = mix_ * held_wrench;
+    const ThrustVector horizontal = thrust - held;
+    const double held_worst = busiest(held);
+    if (held_worst >= 1.0) {
+      // Those alone are beyond the thrusters: their common scale keeps their direction.
+      thrust = held / held_worst;
+      fraction = wrench_body.head<2>().isZero() ? 1.0 / held_worst : 0.0;
+    } else {
+      fraction = horizontal_share(held, horizontal);
+      thrust = held + fraction * horizontal;
+    }
+  }
+  for (std::size_t i = 0; i < effectiveness_.count(); ++i) {
+    const double f = thrust[static_cast<Eigen::Index>(i)];
+    // The clip only removes rounding.
     command.thrust_fraction[static_cast<std::size_t>(effectiveness_.channel(i))] =
         std::clamp(effectiveness_.command_for_thrust(i, f), -1.0, 1.0);
   }
-  return scale;
+  return fraction;
+}
+
+Wrench ControlAllocator::axis_capacity() const {
+  const std::size_t n = effectiveness_.count();
+  Wrench capacity = Wrench::Zero();
+  for (Eigen::Index axis = 0; axis < 6; ++axis) {
+    double weakest = std::numeric_limits<double>::infinity();
+    for (const double sign : {1.0, -1.0}) {
+      for (std::size_t i = 0; i < n; ++i) {
+        const double per_unit = sign * mix_(static_cast<Eigen::Index>(i), axis);
+        if (std::abs(per_unit) < 1e-12) continue;
+        weakest = std::min(weakest, effectiveness_.limit_n(i, per_unit) / std::abs(per_unit));
+      }
+    }
+    capacity[axis] = std::isfinite(weakest) ? weakest : 0.0;
+  }
+  return capacity;
 }
 
 }  // namespace rovctl::control

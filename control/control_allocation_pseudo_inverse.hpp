@@ -1,6 +1,7 @@
 // Thruster allocation: a weighted pseudo-inverse of the effectiveness matrix, computed at start-up
 // and again, without allocating, when a thruster fails and is removed (as PX4's ControlAllocator
-// does); saturation scales the whole thrust vector so the wrench keeps its direction.
+// does); under saturation heave, roll, pitch and yaw are kept whole and surge and sway get what
+// the thrusters have left.
 #pragma once
 
 #include <Eigen/Core>
@@ -23,13 +24,19 @@ class ControlAllocator {
   ControlAllocator(const hal::ThrusterLayout& layout, const AllocationParams& params);
 
   // Thruster commands in [-1, 1] for the wrench, indexed by bus channel (count = highest
-  // channel + 1, unused channels neutral). Returns the fraction of the wrench achieved: 1 when
-  // no thruster saturates, else the common scale that brought the busiest one to its limit.
-  // A non-finite wrench gives neutral commands and 0. No allocation.
+  // channel + 1, unused channels neutral). When a thruster would saturate, heave, roll, pitch
+  // and yaw are kept and surge and sway scaled by the common share the thrusters leave them;
+  // when the kept axes alone are beyond the thrusters, they are scaled by one factor (keeping
+  // their direction) and surge and sway get nothing. Returns the smallest share of the wrench
+  // achieved along any axis it asks for: 1 when no thruster saturates. A non-finite wrench
+  // gives neutral commands and 0. No allocation.
   double allocate(const Wrench& wrench_body, hal::ThrusterCommand& command) const;
 
   // The thrusts [N] before saturation (min weighted-norm solution). No allocation.
   ThrustVector thrust_for(const Wrench& wrench_body) const { return mix_ * wrench_body; }
+  // The largest force (N) or moment (N m) the active thrusters can make along each body axis
+  // alone, in the weaker of its two directions. No allocation.
+  Wrench axis_capacity() const;
   // Sets every channel of the layout to neutral.
   void neutral(hal::ThrusterCommand& command) const;
 
@@ -49,6 +56,10 @@ class ControlAllocator {
 
  private:
   void compute_mix();
+  // The largest |thrust| / limit over the thrusters (over 1: some thruster saturates).
+  double busiest(const ThrustVector& thrust) const;
+  // The largest share s in [0, 1] of the horizontal thrusts that fits on top of the held ones.
+  double horizontal_share(const ThrustVector& held, const ThrustVector& horizontal) const;
 
   ThrusterEffectiveness effectiveness_;
   MixMatrix mix_;

@@ -3,6 +3,26 @@
 
 namespace rovctl::control {
 
+void describe(hal::ParamVisitor& v, DisturbanceParams& p) {
+  v.param("hold_fraction", p.hold_fraction,
+          {"-", 0.1, 1.0,
+           "share of the thrusters' force along each axis the current's estimate may take"});
+  v.param(
+      "settle_rate_nps", p.settle_rate_nps,
+      {"N/s", 0.01, 100.0, "the estimate is settled while its horizontal force changes slower"});
+  v.param("settle_s", p.settle_s,
+          {"s", 0.0, 60.0, "... for this long (ALIGN's hold counts only settled frames)"});
+  v.param("rate_cutoff_hz", p.rate_cutoff_hz,
+          {"Hz", 0.01, 15.0, "cut-off of the two low-pass poles on the estimate's rate of change"});
+  v.param("beyond_hold_s", p.beyond_hold_s,
+          {"s", 0.1, 600.0,
+           "at its limit or with the thrusters saturated this long: current beyond hold"});
+  v.param("swept_fraction", p.swept_fraction,
+          {"-", 0.0, 1.0,
+           "share of its limit the still rising estimate must reach for a marker lost to count "
+           "toward mission.beyond_hold_losses"});
+}
+
 void describe(hal::ParamVisitor& v, ServoParams& p) {
   v.param("six_dof", p.six_dof,
           "servo all six axes; false servoes x, y, z and yaw and only damps roll and pitch");
@@ -36,6 +56,8 @@ void describe(hal::ParamVisitor& v, ServoParams& p) {
           {"s", 0.01, 5.0, "a longer gap between updates restarts the derivative"});
   v.param("net_buoyancy_n", p.net_buoyancy_n,
           {"N", -100.0, 100.0, "buoyancy minus weight; fed forward as a downward force"});
+  v.section("disturbance", "the integral term as the estimate of the current's push",
+            [&p](hal::ParamVisitor& s) { describe(s, p.disturbance); });
 }
 
 void describe(hal::ParamVisitor& v, AllocationParams& p) {
@@ -149,6 +171,15 @@ void describe(hal::ParamVisitor& v, ThrusterHealthParams& p) {
 void describe(hal::ParamVisitor& v, RechargeParams& p) {
   v.param("charge_push_n", p.charge_push_n,
           {"N", 0.0, 200.0, "CHARGING: feed-forward push along the docking axis"});
+  v.param("seat_trim_rise_nps", p.seat_trim_rise_nps,
+          {"N/s", 0.0, 100.0,
+           "CHARGING: the push grows at this rate while the probe slips out of the seat (the "
+           "contact lost, or seen seat_slip_m short of its deepest), up to overload_force_n"});
+  v.param("seat_trim_decay_nps", p.seat_trim_decay_nps,
+          {"N/s", 0.0, 100.0, "CHARGING: the added push shrinks at this rate while seated"});
+  v.param("seat_slip_m", p.seat_slip_m,
+          {"m", 0.0005, 0.05,
+           "CHARGING: the probe seen this far short of the deepest it sat is slipping out"});
   v.param("soc_complete_fraction", p.soc_complete_fraction,
           {"-", 0.0, 1.0, "state of charge that completes the charge"});
   v.param("complete_current_a", p.complete_current_a,
@@ -239,6 +270,19 @@ void describe(hal::ParamVisitor& v, MissionParams& p) {
           {"m", 0.001, 1.0, "DOCK aborts beyond this lateral error"});
   v.param("dock_abort_yaw_rad", p.dock_abort_yaw_rad,
           {"rad", 0.001, 3.2, "DOCK aborts beyond this yaw error"});
+  v.param(
+      "dock_wait_lateral_m", p.dock_wait_lateral_m,
+      {"m", 0.001, 1.0, "DOCK's set-point waits while the probe is seen this far off the axis"});
+  v.param("dock_wait_backoff_m", p.dock_wait_backoff_m,
+          {"m", 0.0, 0.2,
+           "while DOCK waits, its set-point stays at least this far behind the probe: a "
+           "set-point left ahead, where the servo's lag put it, carries the probe on into the "
+           "station face off the axis"});
+  v.param(
+      "dock_wait_filter_s", p.dock_wait_filter_s,
+      {"s", 0.0, 5.0,
+       "time constant of the lateral error DOCK's wait judges: a vibrating mount's swing "
+       "(tenths of a second) averages out, a gust's drift (seconds) does not; 0: each frame's"});
   v.param("dock_abort_frames", p.dock_abort_frames,
           {"frames", 1, 1000, "consecutive frames past the dock abort limits before aborting"});
   v.param("dock_timeout_s", p.dock_timeout_s, {"s", 1.0, 3600.0, "DOCK time limit (then ABORT)"});
@@ -272,6 +316,10 @@ void describe(hal::ParamVisitor& v, MissionParams& p) {
            "station, which searches at once"});
   v.param("max_retries", p.max_retries,
           {"-", 0, 100, "aborts allowed; one more and the mission fails"});
+  v.param("beyond_hold_losses", p.beyond_hold_losses,
+          {"-", 1, 100,
+           "markers lost before the dock while the current's estimate was still rising toward "
+           "the push (since it last settled in view) that make the current beyond hold"});
 }
 
 }  // namespace rovctl::control

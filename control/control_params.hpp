@@ -11,6 +11,26 @@
 
 namespace rovctl::control {
 
+// The servo's integral term as an estimate of the current's push (DisturbanceEstimate): how much
+// of the thrusters it may take, when it counts as settled, and when the current is beyond hold.
+struct DisturbanceParams {
+  // Share of the thrusters' force (or moment) along each axis the estimate may take; the rest is
+  // left to the servo's P and D terms.
+  double hold_fraction = 0.7;
+  // Settled: the horizontal force, low-passed twice at rate_cutoff_hz, changes slower than
+  // settle_rate_nps for settle_s. ALIGN's hold counts only settled frames.
+  double settle_rate_nps = 0.5;
+  double settle_s = 1.5;
+  double rate_cutoff_hz = 0.5;
+  // Beyond hold: a horizontal axis at its limit, or the thrusters saturated, for this long.
+  double beyond_hold_s = 4.0;
+  // A marker lost while the estimate is still rising counts toward mission.beyond_hold_losses
+  // once the estimate has reached this share of its limit.
+  double swept_fraction = 0.3;
+};
+
+void describe(hal::ParamVisitor& v, DisturbanceParams& p);
+
 // The PD(+I) visual servo. Linear gains act on the position error in body axes (x fwd, y stbd,
 // z down), angular gains on the rotation error (roll, pitch, yaw about body x, y, z).
 struct ServoParams {
@@ -18,7 +38,8 @@ struct ServoParams {
   // their derivative (damping) term. true: all six axes.
   bool six_dof = false;
   Eigen::Vector3d kp_linear{80.0, 90.0, 90.0};  // N/m
-  Eigen::Vector3d kd_linear{60.0, 60.0, 70.0};  // N s/m
+  // Heave: 70 limit-cycled at 1 Hz (+-0.1 m, +-50 N) holding the stand-off in a 0.25 m/s current.
+  Eigen::Vector3d kd_linear{60.0, 60.0, 40.0};  // N s/m
   Eigen::Vector3d ki_linear{20.0, 30.0, 30.0};  // N/(m s)
   // Yaw: the camera latency, the frame period and the thrusters' lag add up to ~0.15 s, so the
   // yaw loop must cross over near 3 rad/s (kp 8 / kd 3 limit-cycled at +-0.03 rad, 0.8 Hz).
@@ -26,7 +47,7 @@ struct ServoParams {
   Eigen::Vector3d kd_angular{1.0, 1.0, 2.0};  // N m s/rad
   Eigen::Vector3d ki_angular{0.0, 0.0, 0.3};  // N m/(rad s)
   // Anti-windup: the integral term's magnitude per axis never exceeds these.
-  Eigen::Vector3d integral_limit_linear_n{8.0, 8.0, 8.0};
+  Eigen::Vector3d integral_limit_linear_n{60.0, 60.0, 20.0};
   Eigen::Vector3d integral_limit_angular_nm{1.0, 1.0, 1.0};
   // The proportional and integral terms see the error clipped to these norms, which bounds the
   // approach speed (about kp * max / kd) so the estimator can keep the marker tracked.
@@ -45,6 +66,7 @@ struct ServoParams {
   double max_update_gap_s = 0.25;
   // Buoyancy minus weight; the feed-forward pushes down (body +z) by this much.
   double net_buoyancy_n = 2.0;
+  DisturbanceParams disturbance;
 };
 
 void describe(hal::ParamVisitor& v, ServoParams& p);
@@ -117,13 +139,18 @@ void describe(hal::ParamVisitor& v, FailsafeParams& p);
 // the visual servo leaves them to passive stability, which on a BlueROV2 (centre of buoyancy
 // ~1 cm above gravity's) lets thrust and current tip the cameras off the marker by 15-20 deg.
 // Used when the servo is not six_dof and the sensors report a valid attitude.
+// Stiff enough that a heave drives no pitch the servo could see: in a 0.25 m/s head current the
+// added mass's Munk moment turns heave speed into pitch, which the camera reads as the marker
+// moving vertically; at 6 N m/rad that loop held a +-3 cm heave limit cycle through ALIGN. Not
+// stiffer: at 20 N m/rad the levelling's own jitter took docking's lateral error p95 from 4 to 5.5
+// mm.
 struct AttitudeParams {
   bool enabled = true;
-  double roll_kp_nm_per_rad = 6.0;
-  double roll_kd_nms_per_rad = 2.0;
-  double pitch_kp_nm_per_rad = 6.0;
-  double pitch_kd_nms_per_rad = 2.0;
-  double max_moment_nm = 6.0;  // per axis
+  double roll_kp_nm_per_rad = 12.0;
+  double roll_kd_nms_per_rad = 3.0;
+  double pitch_kp_nm_per_rad = 12.0;
+  double pitch_kd_nms_per_rad = 3.0;
+  double max_moment_nm = 12.0;  // per axis
 };
 
 void describe(hal::ParamVisitor& v, AttitudeParams& p);
@@ -169,6 +196,13 @@ void describe(hal::ParamVisitor& v, ControlParams& p);
 struct RechargeParams {
   // CHARGING: push along the docking axis (feed-forward) while the servo holds lateral and yaw.
   double charge_push_n = 3.0;
+  // Pressed on the socket's bottom the axial error is nil, so no integral learns the current's
+  // axial part while the tide turns it; the seat trim does: it adds to the push at
+  // seat_trim_rise_nps while the probe slips (the seat contact lost, or vision seeing the probe
+  // seat_slip_m short of the deepest it sat), and gives it back at seat_trim_decay_nps once seated.
+  double seat_trim_rise_nps = 2.0;
+  double seat_trim_decay_nps = 0.1;
+  double seat_slip_m = 0.002;
   // Charge complete: SoC at or above soc_complete_fraction, or the charge current below
   // complete_current_a once the SoC is past complete_min_soc_fraction (the charger's taper).
   double soc_complete_fraction = 0.95;
@@ -243,6 +277,12 @@ struct MissionParams {
   double dock_overshoot_m = 0.05;
   double dock_abort_lateral_m = 0.03;
   double dock_abort_yaw_rad = 0.10;
+  // The set-point waits while the probe is seen this far off the axis (a gust that the current's
+  // estimate has not caught up with yet), until the servo brings it back: no further in than
+  // dock_wait_backoff_m behind the probe, so that the probe stops where the gust found it.
+  double dock_wait_lateral_m = 0.006;
+  double dock_wait_filter_s = 0.2;
+  double dock_wait_backoff_m = 0.01;
   // Consecutive frames beyond those limits before the dock aborts: one outlier estimate (a
   // rotated pose that scores well near the socket) must not throw away a good approach.
   int dock_abort_frames = 3;
@@ -265,6 +305,9 @@ struct MissionParams {
   double abort_backoff_force_n = 15.0;
   double abort_backoff_s = 3.0;
   int max_retries = 3;  // aborts after which the mission fails
+  // Markers lost in APPROACH or ALIGN while the current's estimate was still rising (since it
+  // last settled in view) after which the current counts as beyond hold: FAILED.
+  int beyond_hold_losses = 2;
 };
 
 void describe(hal::ParamVisitor& v, MissionParams& p);

@@ -135,6 +135,7 @@ void Mission::enter(MissionState to, std::chrono::nanoseconds now, const char* r
   dock_off_frames_ = 0;
   blind_since_ = std::chrono::nanoseconds{-1};
   dock_pushed_ = std::chrono::nanoseconds{0};
+  dock_lateral_lp_valid_ = false;
   partial_since_ = std::chrono::nanoseconds{-1};
   unseated_since_ = no_current_since_ = overload_since_ = swing_since_ =
       std::chrono::nanoseconds{-1};
@@ -151,7 +152,21 @@ void Mission::enter(MissionState to, std::chrono::nanoseconds now, const char* r
   }
 }
 
-void Mission::lost_before_dock(std::chrono::nanoseconds now) {
+bool Mission::beyond_hold(const Sight& s) {
+  if (!s.in.current_beyond_hold) return false;
+  enter(MissionState::failed, s.in.now, "current beyond hold");
+  return true;
+}
+
+void Mission::lost_before_dock(const Sight& s) {
+  const std::chrono::nanoseconds now = s.in.now;
+  // A current the thrusters cannot hold sweeps the marker from view before the estimate reaches
+  // its limit (0.8 m/s across takes it out of view in 3-4 s); it does so again on every retry.
+  if (s.in.disturbance_rising) ++swept_losses_;
+  if (s.in.disturbance_at_limit || swept_losses_ >= p_.beyond_hold_losses) {
+    enter(MissionState::failed, now, "current beyond hold");
+    return;
+  }
   // APPROACH and ALIGN steer to the stand-off, short of the station, so the probe is not where a
   // back-off must pull it from; and backing off blind takes the vehicle beyond the range the
   // marker can be seen at in turbid water: in the sim's murky water (red extinction 1.6 /m) a
@@ -163,6 +178,7 @@ void Mission::lost_before_dock(std::chrono::nanoseconds now) {
 
 void Mission::restart(std::chrono::nanoseconds now, const char* reason) {
   aborts_ = 0;
+  swept_losses_ = 0;
   search_timed_out_ = false;
   enter(MissionState::search, now, reason);
   started_ = true;
@@ -171,6 +187,8 @@ void Mission::restart(std::chrono::nanoseconds now, const char* reason) {
   charging_started_ = charge_complete_ = abort_after_undock_ = final_abort_ = false;
   keep_axial_trim_ = restore_axial_trim_ = false;
   reseats_ = 0;
+  seat_trim_n_ = 0.0;
+  seat_deepest_valid_ = false;
   dock_start_back_m_ = p_.standoff_m;
 }
 
@@ -257,8 +275,12 @@ void Mission::from_search(const Sight& s) {
 
 void Mission::from_approach(const Sight& s) {
   const Errors& err = s.err;
+  if (beyond_hold(s)) return;
+  // Settled with the marker in view: the thrusters hold this current, so earlier losses while
+  // the estimate was rising were not its doing.
+  if (s.seen && s.in.disturbance_settled && !s.in.disturbance_rising) swept_losses_ = 0;
   if (s.lost) {
-    lost_before_dock(s.in.now);
+    lost_before_dock(s);
   } else if (s.t_state > p_.approach_timeout_s) {
     enter(MissionState::abort, s.in.now, "approach timed out");
   } else if (s.seen && err.lateral_m <= p_.approach_lateral_m &&
@@ -289,20 +311,28 @@ void Mission::from_align(const Sight& s) {
              std::abs(align_avg_.z()) <= p_.align_axial_m &&
              std::abs(align_avg_.w()) <= p_.align_yaw_rad;
   }
-  hold_frames_ = within ? hold_frames_ + 1 : 0;
+  // Judged only once the current's estimate has settled: an error within the limits while it is
+  // still learning the push is a vehicle passing through, not one held there.
+  hold_frames_ = within && s.in.disturbance_settled ? hold_frames_ + 1 : 0;
+  if (beyond_hold(s)) return;
+  // Settled with the marker in view: the thrusters hold this current, so earlier losses while
+  // the estimate was rising were not its doing.
+  if (s.seen && s.in.disturbance_settled && !s.in.disturbance_rising) swept_losses_ = 0;
   if (s.lost) {
-    lost_before_dock(s.in.now);
+    lost_before_dock(s);
   } else if (hold_frames_ >= p_.align_hold_frames) {
     dock_start_back_m_ = p_.standoff_m;
     enter(MissionState::dock, s.in.now, "aligned");
   } else if (s.t_state > p_.align_timeout_s) {
-    enter(MissionState::abort, s.in.now, "align timed out");
+    enter(MissionState::abort, s.in.now,
+          s.in.disturbance_settled ? "align timed out" : "align timed out: current not settled");
   }
 }
 
 void Mission::from_dock(const Sight& s) {
   const Errors& err = s.err;
   const std::chrono::nanoseconds now = s.in.now;
+  if (beyond_hold(s)) return;
   const bool vision_contact = p_.contact_from_vision && s.seen_dock &&
                               err.axial_m >= p_.vision_contact_depth_m &&
                               err.lateral_m <= p_.dock_abort_lateral_m;
@@ -408,7 +438,8 @@ MissionOutput Mission::outputs(const Sight& s) {
       out.T_cl_marker_desired =
           s.seen_dock ? offset_along_docking_axis(T_docked_, -s.err.axial_m) : T_docked_;
       servo_when(s.seen_dock, out);
-      out.push_body.head<3>() = docked_axis_body_ * p_.recharge.charge_push_n;
+      update_seat_trim(s);
+      out.push_body.head<3>() = docked_axis_body_ * (p_.recharge.charge_push_n + seat_trim_n_);
       break;
     case MissionState::undock:
       undock_outputs(s, out);
@@ -463,17 +494,58 @@ void Mission::dock_outputs(const Sight& s, MissionOutput& out) {
   // the sim's occluders scenario; servoing on it 0.4 m out turned the vehicle past the yaw
   // limit, and holding alone let the current carry it 30 mm off the axis in 2 s. In the blind
   // zone the push goes on: on the servo when the view is full or aided, else blind.
-  if (s.seen_dock) dock_pushed_ += s.tick;
+  // A gust that carries the probe off the axis near the socket would have it touch off the axis
+  // before the current's estimate catches up: the set-point waits until the servo brings it back.
+  // Judged on the error low-passed: a camera on a vibrating mount sees the probe swing by
+  // millimetres at several hertz, which is no drift and would stall the push.
+  if (s.full) {
+    const double tau_s = p_.dock_wait_filter_s;
+    const double share =
+        !dock_lateral_lp_valid_ || tau_s <= 0.0 ? 1.0 : 1.0 - std::exp(-seconds(s.tick) / tau_s);
+    dock_lateral_lp_x_m_ += share * (s.err.lateral_x_m - dock_lateral_lp_x_m_);
+    dock_lateral_lp_y_m_ += share * (s.err.lateral_y_m - dock_lateral_lp_y_m_);
+    dock_lateral_lp_valid_ = true;
+  }
+  const bool off_axis =
+      s.full && std::hypot(dock_lateral_lp_x_m_, dock_lateral_lp_y_m_) > p_.dock_wait_lateral_m;
+  if (s.seen_dock && !off_axis) dock_pushed_ += s.tick;
+  if (off_axis) {
+    // The servo lags the ramp by centimetres at the dock speed: waiting with the set-point where
+    // it was let the probe coast 2 cm on and meet the face 20-40 mm off the axis in a gust.
+    const double wait_back_m = -s.err.axial_m + p_.dock_wait_backoff_m;
+    const double pushed_max_s =
+        std::max(0.0, (dock_start_back_m_ - wait_back_m) / p_.dock_speed_mps);
+    dock_pushed_ = std::min(dock_pushed_, std::chrono::duration_cast<std::chrono::nanoseconds>(
+                                              std::chrono::duration<double>(pushed_max_s)));
+  }
   const double back = std::max(dock_start_back_m_ - p_.dock_speed_mps * seconds(dock_pushed_),
                                -p_.dock_overshoot_m);
   out.T_cl_marker_desired = offset_along_docking_axis(T_docked_, back);
   // steer_dock, and the aided wait
   servo_when(s.full || (s.seen && s.in.attitude_aided), out);
-  // A re-seat keeps pressing while it slides back in.
-  if (charging_started_) out.push_body.head<3>() = docked_axis_body_ * p_.recharge.charge_push_n;
+  // A re-seat keeps pressing while it slides back in, the harder for having slipped out.
+  if (charging_started_) {
+    update_seat_trim(s);
+    out.push_body.head<3>() = docked_axis_body_ * (p_.recharge.charge_push_n + seat_trim_n_);
+  }
   if (!s.steer_dock && blind_since_.count() >= 0) {
     out.wrench_override_body.head<3>() = docked_axis_body_ * p_.dock_blind_push_n;
   }
+}
+
+void Mission::update_seat_trim(const Sight& s) {
+  const RechargeParams& r = p_.recharge;
+  bool slipping = state_ == MissionState::dock || (p_.contact_switch && !s.in.contact);
+  if (s.seen_dock && state_ == MissionState::charging) {
+    seat_deepest_m_ =
+        seat_deepest_valid_ ? std::max(seat_deepest_m_, s.err.axial_m) : s.err.axial_m;
+    seat_deepest_valid_ = true;
+    slipping = slipping || s.err.axial_m < seat_deepest_m_ - r.seat_slip_m;
+  }
+  const double dt_s = seconds(s.tick);
+  seat_trim_n_ = slipping ? std::min(seat_trim_n_ + r.seat_trim_rise_nps * dt_s,
+                                     std::max(0.0, r.overload_force_n - r.charge_push_n))
+                          : std::max(seat_trim_n_ - r.seat_trim_decay_nps * dt_s, 0.0);
 }
 
 void Mission::undock_outputs(const Sight& s, MissionOutput& out) const {
@@ -506,7 +578,7 @@ void Mission::from_charging(const Sight& s) {
       held_for(in.hold_force_n > r.overload_force_n, in.now, overload_since_, r.overload_s);
   const bool swung = held_for(seen_dock && std::abs(err.yaw_rad) > r.overload_yaw_rad, in.now,
                               swing_since_, r.overload_yaw_s);
-  const bool overload = pushed || swung;
+  const bool overload = pushed || swung || in.current_beyond_hold;
   if (in.undock_requested) {
     start_undock(in.now, "operator command");
   } else if (overload) {

@@ -52,17 +52,25 @@ struct MissionInput {
   double soc_fraction = 0.0;
   double hold_force_n = 0.0;
   bool undock_requested = false;
+  // The servo's estimate of the current's push (DisturbanceEstimate): settled (ALIGN's hold
+  // counts only settled frames), at its limit now, and beyond what the thrusters may hold.
+  bool disturbance_settled = true;
+  bool disturbance_at_limit = false;
+  bool disturbance_rising = false;  // still growing toward the push
+  bool current_beyond_hold = false;
 };
 
 // The application's contract: thrusters_enabled false -> neutral. Else if servo_active:
-// servo_restart -> PdVisualServo::reset(), then the wrench is the servo's, aimed at
+// servo_restart -> PdVisualServo::restart(), then the wrench is the servo's, aimed at
 // T_cl_marker_desired. Else if use_override: wrench_override_body plus the servo's
 // hold_wrench_body() (feed-forward and integral: the trim against buoyancy and current).
 // The servo need not be reset after a brief loss (it restarts its derivative after a gap).
 struct MissionOutput {
   MissionState state = MissionState::search;
   bool servo_active = false;
-  bool servo_restart = false;  // the servo starts afresh this tick (integral and derivative)
+  // The servo takes over this tick (PdVisualServo::restart: the derivative afresh, the current's
+  // estimate kept).
+  bool servo_restart = false;
   Eigen::Isometry3d T_cl_marker_desired = Eigen::Isometry3d::Identity();
   Wrench wrench_override_body = Wrench::Zero();
   bool use_override = false;
@@ -185,10 +193,17 @@ class Mission {
   static void servo_when(bool in_view, MissionOutput& out);
   void search_outputs(const Sight& s, MissionOutput& out) const;
   void dock_outputs(const Sight& s, MissionOutput& out);
+  void update_seat_trim(const Sight& s);
   void undock_outputs(const Sight& s, MissionOutput& out) const;
   void enter(MissionState to, std::chrono::nanoseconds now, const char* reason);
-  // APPROACH or ALIGN lost the marker: an abort that searches at once, without backing off.
-  void lost_before_dock(std::chrono::nanoseconds now);
+  // APPROACH or ALIGN lost the marker: an abort that searches at once, without backing off;
+  // lost while the current's estimate was at its limit, or for the
+  // mission.beyond_hold_losses-th time while it was still rising toward the push, the current
+  // swept it away: FAILED.
+  void lost_before_dock(const Sight& s);
+  // The current pushes harder than the thrusters may hold: no retry can succeed, so FAILED
+  // (thrusters neutral) rather than an abort that would search and approach again.
+  bool beyond_hold(const Sight& s);
   void start_undock(std::chrono::nanoseconds now, const char* reason);
   void push_event(const MissionEvent& e);
 
@@ -204,6 +219,9 @@ class Mission {
   bool started_ = false;
   bool servo_was_active_ = false;
   int aborts_ = 0;
+  // Markers lost in APPROACH or ALIGN while the current's estimate was still rising toward the
+  // push, since it last settled with the marker in view.
+  int swept_losses_ = 0;
   int seen_frames_ = 0;
   int unseen_frames_ = 0;
   int partial_frames_ = 0;  // consecutive frames recognised on a partial view
@@ -220,6 +238,9 @@ class Mission {
   // DOCK's push runs on the full view only: the time it has run, and since when the view is
   // partial (a passing bar, a bubble on a sphere) while the push waits.
   std::chrono::nanoseconds dock_pushed_{0};
+  // The full view's lateral error (marker-frame x, y), low-passed for the wait.
+  double dock_lateral_lp_x_m_ = 0.0, dock_lateral_lp_y_m_ = 0.0;
+  bool dock_lateral_lp_valid_ = false;
   std::chrono::nanoseconds partial_since_{-1};
   std::chrono::nanoseconds last_now_{-1};
   // Recharging.
@@ -235,6 +256,10 @@ class Mission {
   bool keep_axial_trim_ = false;     // the next output asks to keep the axial trim
   bool restore_axial_trim_ = false;  // ... to restore it
   int reseats_ = 0;
+  // The push CHARGING adds against the current's axial part, and the deepest seat seen.
+  double seat_trim_n_ = 0.0;
+  double seat_deepest_m_ = 0.0;
+  bool seat_deepest_valid_ = false;
   double dock_start_back_m_ = 0.0;    // DOCK's set-point starts this far back (re-seat: from here)
   double undock_start_back_m_ = 0.0;  // UNDOCK's set-point starts here
   std::chrono::nanoseconds charging_since_{0};  // the first CHARGING entry (the time limit)

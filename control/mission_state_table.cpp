@@ -16,6 +16,11 @@ constexpr MissionExit kSearchExits[] = {
 constexpr MissionExit kApproachExits[] = {
     {"the marker unseen `mission.lost_frames` frames (an abort that searches from where it is)",
      S::abort, "marker lost"},
+    {"the current's estimate at its limit (`control.servo.disturbance.hold_fraction` of the "
+     "thrusters) or the thrusters saturated for `control.servo.disturbance.beyond_hold_s`; or the "
+     "marker lost while it was at its limit, or lost for the `mission.beyond_hold_losses`-th time "
+     "while it was still rising toward the push",
+     S::failed, "current beyond hold"},
     {"`mission.approach_timeout_s` passed", S::abort, "approach timed out"},
     {"the probe within `mission.approach_lateral_m`, `mission.approach_axial_m`, "
      "`mission.approach_yaw_rad` of the "
@@ -29,9 +34,18 @@ constexpr MissionExit kAlignExits[] = {
      "`mission.align_lateral_m`, "
      "`mission.align_axial_m`, `mission.align_yaw_rad` (each frame within the dock's abort limits) "
      "for "
-     "`mission.align_hold_frames` frames",
+     "`mission.align_hold_frames` frames, counted once the current's estimate has settled "
+     "(`control.servo.disturbance.settle_rate_nps` for `control.servo.disturbance.settle_s`)",
      S::dock, "aligned"},
-    {"`mission.align_timeout_s` passed", S::abort, "align timed out"},
+    {"the current's estimate at its limit (`control.servo.disturbance.hold_fraction` of the "
+     "thrusters) or the thrusters saturated for `control.servo.disturbance.beyond_hold_s`; or the "
+     "marker lost while it was at its limit, or lost for the `mission.beyond_hold_losses`-th time "
+     "while it was still rising toward the push",
+     S::failed, "current beyond hold"},
+    {"`mission.align_timeout_s` passed, the current's estimate settled", S::abort,
+     "align timed out"},
+    {"`mission.align_timeout_s` passed, the current's estimate still changing", S::abort,
+     "align timed out: current not settled"},
 };
 constexpr MissionExit kDockExits[] = {
     {"the contact switch closed `mission.contact_frames` frames", S::docked, "contact"},
@@ -49,6 +63,9 @@ constexpr MissionExit kDockExits[] = {
     {"blind in the blind zone longer than `mission.dock_blind_timeout_s`", S::abort,
      "no contact after blind push"},
     {"`mission.dock_timeout_s` passed", S::abort, "dock timed out"},
+    {"the current's estimate at its limit or the thrusters saturated for "
+     "`control.servo.disturbance.beyond_hold_s`",
+     S::failed, "current beyond hold"},
     {"a failsafe trips during a re-seat (it backs out)", S::undock,
      "failsafe: backing out of the socket"},
 };
@@ -64,7 +81,7 @@ constexpr MissionExit kAbortExits[] = {
 constexpr MissionExit kChargingExits[] = {
     {"the operator ends the charge", S::undock, "operator command"},
     {"the hold's force past `mission.recharge.overload_force_n` or its yaw past "
-     "`mission.recharge.overload_yaw_rad` for their times",
+     "`mission.recharge.overload_yaw_rad` for their times, or the current's estimate beyond hold",
      S::undock, "current beyond what the hold resists"},
     {"the probe unseated for `mission.recharge.unseat_confirm_s`, re-seats left", S::dock,
      "probe unseated: re-seat"},
@@ -100,10 +117,11 @@ const std::array<MissionStateRow, kMissionStateCount> kTable = {{
      "servo to the stand-off; unseen: hold"},
     {S::dock, "ALIGN held aligned; CHARGING's probe unseated (a re-seat)", kDockExits,
      "servo to a set-point moving in at `mission.dock_speed_mps` (on a full or attitude-aided "
-     "view); in "
-     "the blind zone without one the push `mission.dock_blind_push_n` along the docked axis; a "
-     "re-seat "
-     "adds `mission.recharge.charge_push_n`"},
+     "view; it waits, at least `mission.dock_wait_backoff_m` behind the probe, while the full "
+     "view puts the probe more than `mission.dock_wait_lateral_m` off the axis, its error "
+     "low-passed over `mission.dock_wait_filter_s`); in the blind zone without one the push "
+     "`mission.dock_blind_push_n` along the docked axis; a re-seat adds "
+     "`mission.recharge.charge_push_n` and the seat trim"},
     {S::docked, "DOCK made contact", kDockedExits, "neutral (the docking mission ends here)"},
     {S::abort,
      "APPROACH, ALIGN or DOCK gave up (counted); UNDOCK after the re-seats ran out (the final "
@@ -112,10 +130,15 @@ const std::array<MissionStateRow, kMissionStateCount> kTable = {{
      "astern `mission.abort_backoff_force_n` (none after a loss before the dock); neutral once the "
      "final "
      "ABORT has backed off"},
-    {S::failed, "SEARCH or UNDOCK timed out; aborts past `mission.max_retries`", {}, "neutral"},
+    {S::failed,
+     "SEARCH or UNDOCK timed out; aborts past `mission.max_retries`; APPROACH, ALIGN or DOCK "
+     "found the current beyond hold",
+     {},
+     "neutral"},
     {S::charging, "DOCKED on the recharging mission", kChargingExits,
      "servo on lateral and yaw, the set-point following the probe; the push "
-     "`mission.recharge.charge_push_n` along the docked axis; the axial trim DOCK kept, not "
+     "`mission.recharge.charge_push_n` along the docked axis plus the seat trim (rising while "
+     "the probe slips out, `mission.recharge.seat_trim_rise_nps`); the axial trim DOCK kept, not "
      "integrated"},
     {S::undock, "CHARGING ends the charge; a failsafe at the station backs out", kUndockExits,
      "servo to a set-point moving out at `mission.recharge.undock_speed_mps` to the stand-off; "

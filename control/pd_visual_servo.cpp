@@ -32,6 +32,19 @@ RateFilter::Vector rate_limits(const ServoParams& p) {
       .finished();
 }
 
+Wrench integral_gains(const ServoParams& p) {
+  Wrench ki;
+  ki << p.ki_linear, p.ki_angular;
+  if (!p.six_dof) ki[3] = ki[4] = 0.0;  // roll and pitch: passively stable, only damped
+  return ki;
+}
+
+Wrench integral_limits(const ServoParams& p) {
+  Wrench limit;
+  limit << p.integral_limit_linear_n, p.integral_limit_angular_nm;
+  return limit;
+}
+
 }  // namespace
 
 PoseError pose_error_body(const Eigen::Isometry3d& T_body_cl,
@@ -65,32 +78,54 @@ double marker_bearing_rad(const Eigen::Isometry3d& T_body_cl,
 }
 
 PdVisualServo::PdVisualServo(const ServoParams& params, const Eigen::Isometry3d& T_body_cl)
-    : p_(params), T_body_cl_(T_body_cl), rate_(params.rate_cutoff_hz, rate_limits(params)) {
+    : p_(params),
+      T_body_cl_(T_body_cl),
+      rate_(params.rate_cutoff_hz, rate_limits(params)),
+      disturbance_(integral_gains(params), integral_limits(params), params.disturbance) {
   kp_ << p_.kp_linear, p_.kp_angular;
   kd_ << p_.kd_linear, p_.kd_angular;
-  ki_ << p_.ki_linear, p_.ki_angular;
-  if (!p_.six_dof) {
-    // Roll and pitch: passively stable; only their damping term stays.
-    kp_[3] = kp_[4] = 0.0;
-    ki_[3] = ki_[4] = 0.0;
-  }
-  integral_limit_ << p_.integral_limit_linear_n, p_.integral_limit_angular_nm;
+  // Roll and pitch: passively stable; only their damping term stays.
+  if (!p_.six_dof) kp_[3] = kp_[4] = 0.0;
   feedforward_.setZero();
   feedforward_[2] = p_.net_buoyancy_n;  // body z is down: a buoyant vehicle needs a push down
 }
 
-void PdVisualServo::reset() {
+void PdVisualServo::restart() {
   rate_.reset();
-  integral_.setZero();
   error_.setZero();
   saturated_ = false;
-  held_.setConstant(false);
+  for (int i = 0; i < 6; ++i) disturbance_.hold_axis(i, false);
+}
+
+void PdVisualServo::reset() {
+  rate_.reset();
+  disturbance_.reset();
+  error_.setZero();
+  saturated_ = false;
+  have_last_rotation_ = false;
 }
 
 void PdVisualServo::set_integral_term(int axis, double value) {
-  if (ki_[axis] <= 0.0) return;
-  const double bound = integral_limit_[axis] / ki_[axis];
-  integral_[axis] = std::clamp(value / ki_[axis], -bound, bound);
+  disturbance_.set_axis(axis, value);
+}
+
+void PdVisualServo::hold_integral(int axis, bool hold) { disturbance_.hold_axis(axis, hold); }
+
+Eigen::Matrix3d PdVisualServo::body_turn(const Eigen::Matrix3d& R_body_marker) {
+  Eigen::Matrix3d R_body_prevbody = Eigen::Matrix3d::Identity();
+  if (have_last_rotation_) {
+    R_body_prevbody = R_body_marker * R_body_marker_last_.transpose();
+    if (!p_.six_dof) {
+      // Only the turn about the vertical: the estimate's roll and pitch noise (about a degree a
+      // frame) would tip the heave trim into surge and sway.
+      R_body_prevbody = Eigen::AngleAxisd(std::atan2(R_body_prevbody(1, 0), R_body_prevbody(0, 0)),
+                                          Eigen::Vector3d::UnitZ())
+                            .toRotationMatrix();
+    }
+  }
+  R_body_marker_last_ = R_body_marker;
+  have_last_rotation_ = true;
+  return R_body_prevbody;
 }
 
 Wrench PdVisualServo::update(const Eigen::Isometry3d& T_cl_marker_measured,
@@ -116,22 +151,21 @@ Wrench PdVisualServo::update(const Eigen::Isometry3d& T_cl_marker_measured,
   e_clipped << clip_norm<Eigen::Vector3d>(e.head<3>(), p_.max_position_error_m),
       clip_norm<Eigen::Vector3d>(e.tail<3>(), p_.max_angle_error_rad);
 
-  if (dt_s > 0.0 && dt_s <= p_.max_update_gap_s) {
+  // The station is fixed in the water, so its rotation in the body tells how the body turned even
+  // across a gap; the error is integrated only over a short one.
+  disturbance_.turn(body_turn((T_body_cl_ * T_cl_marker_measured).linear()));
+  if (dt_s <= p_.max_update_gap_s) {
+    // What is integrated is the error plus its rate scaled as the PD weighs them: zero while the
+    // servo closes a clipped error at the speed its gains set (the approach), so a long approach
+    // does not wind the estimate up; at a standstill it is the error itself.
+    PoseError integrand = e_clipped;
     for (int i = 0; i < 6; ++i) {
-      if (ki_[i] <= 0.0) {
-        integral_[i] = 0.0;
-        continue;
-      }
-      if (held_[i]) continue;
-      const double next = integral_[i] + e_clipped[i] * dt_s;
-      // Conditional integration while the thrusters saturate, then a hard clamp.
-      if (saturated_ && std::abs(next) > std::abs(integral_[i])) continue;
-      const double bound = integral_limit_[i] / ki_[i];
-      integral_[i] = std::clamp(next, -bound, bound);
+      if (kp_[i] > 0.0) integrand[i] += kd_[i] / kp_[i] * e_rate[i];
     }
+    disturbance_.integrate(integrand, dt_s, saturated_);
   }
 
-  return kp_.cwiseProduct(e_clipped) + ki_.cwiseProduct(integral_) + kd_.cwiseProduct(e_rate) +
+  return kp_.cwiseProduct(e_clipped) + disturbance_.wrench_body() + kd_.cwiseProduct(e_rate) +
          feedforward_;
 }
 

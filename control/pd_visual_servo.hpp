@@ -7,6 +7,7 @@
 #include <chrono>
 
 #include "control/control_params.hpp"
+#include "control/disturbance_estimate.hpp"
 #include "control/rate_filter.hpp"
 #include "control/thruster_effectiveness.hpp"
 
@@ -48,14 +49,21 @@ class PdVisualServo {
   // Anti-windup from the allocation: while the last wrench was scaled down (fraction < 1) the
   // integral may only shrink.
   void set_allocation_fraction(double achieved_fraction) { saturated_ = achieved_fraction < 0.999; }
+  // What the thrusters can give along each body axis (ControlAllocator::axis_capacity), again
+  // whenever a thruster leaves the allocation: the integral stays within its share of it.
+  void set_capacity(const Wrench& capacity) { disturbance_.set_capacity(capacity); }
 
   // Clears the integral and the derivative; call when the servo (re)starts.
   void reset();
+  // The servo takes over again after SEARCH or ABORT: the derivative starts afresh, but the
+  // current's estimate is kept (the water has not changed; the station's rotation at the next
+  // update turns it by however far the body turned meanwhile). Held axes are released.
+  void restart();
 
   // One axis of the integral term (0-5: x, y, z, roll, pitch, yaw; N or N m): set it (clamped to
   // its limit), or hold it where it is (not integrated) until released. reset() releases.
   void set_integral_term(int axis, double value);
-  void hold_integral(int axis, bool hold) { held_[axis] = hold; }
+  void hold_integral(int axis, bool hold);
 
   // Constant feed-forward (net buoyancy), included in update()'s wrench.
   Wrench feedforward_body() const { return feedforward_; }
@@ -67,18 +75,26 @@ class PdVisualServo {
   // The last update's terms, for telemetry.
   const PoseError& error() const { return error_; }
   const PoseError& error_rate() const { return rate_.rate(); }
-  Wrench integral_term() const { return ki_.cwiseProduct(integral_); }
+  Wrench integral_term() const { return disturbance_.wrench_body(); }
+  // The integral term as the estimate of the current's push: settled, beyond hold.
+  const DisturbanceEstimate& disturbance() const { return disturbance_; }
 
  private:
+  // How the body turned relative to the station since the last update (about the vertical only
+  // unless six_dof), and remembers this update's rotation.
+  Eigen::Matrix3d body_turn(const Eigen::Matrix3d& R_body_marker);
+
   ServoParams p_;
   Eigen::Isometry3d T_body_cl_;
-  Wrench kp_, kd_, ki_, integral_limit_, feedforward_;
+  Wrench kp_, kd_, feedforward_;
   RateFilter rate_;
-  PoseError integral_ = PoseError::Zero();  // of the clipped error, m s and rad s
+  DisturbanceEstimate disturbance_;
   PoseError error_ = PoseError::Zero();
   bool saturated_ = false;
   double max_bearing_rad_ = 0.0;
-  Eigen::Matrix<bool, 6, 1> held_ = Eigen::Matrix<bool, 6, 1>::Constant(false);
+  // The station's rotation in the body at the last update: how far the body has turned since.
+  Eigen::Matrix3d R_body_marker_last_ = Eigen::Matrix3d::Identity();
+  bool have_last_rotation_ = false;
 };
 
 }  // namespace rovctl::control

@@ -81,7 +81,7 @@ const char* telemetry_csv_header() noexcept {
          "dock_lateral_m,dock_axial_m,dock_yaw_rad,"
          "fx_n,fy_n,fz_n,mx_nm,my_nm,mz_nm,"
          "thruster_count,cmd0,cmd1,cmd2,cmd3,cmd4,cmd5,cmd6,cmd7,"
-         "bus_status,flags";
+         "bus_status,flags,push_est_x_n,push_est_y_n,push_truth_x_n,push_truth_y_n";
 }
 
 std::size_t format_telemetry_csv_row(const TelemetryRecord& r, char* buf,
@@ -119,6 +119,8 @@ std::size_t format_telemetry_csv_row(const TelemetryRecord& r, char* buf,
   for (const double v : r.thruster_cmd) row.f(v);
   row.i64(r.bus_status);
   row.u64(r.flags);
+  for (const double v : r.push_est_n) row.f(v);
+  for (const double v : r.push_truth_n) row.f(v);
   return row.length();
 }
 

@@ -42,6 +42,7 @@ constexpr std::uint32_t failsafe = 1u << 7;
 constexpr std::uint32_t dock_errors_valid = 1u << 8;  // dock_* hold the mission's axis errors
 constexpr std::uint32_t full_view = 1u << 9;       // the estimate is ok: every sphere in both views
 constexpr std::uint32_t operator_hold = 1u << 10;  // the operator aborted: neutral until START
+constexpr std::uint32_t current_settled = 1u << 11;  // the servo's estimate of the current settled
 }  // namespace telemetry_flag
 
 // One tick. Poses are T_cl_marker (marker in the left camera frame): translation in m, unit
@@ -85,6 +86,10 @@ struct TelemetryRecord {
   std::int32_t thruster_count = 0;
   std::int32_t bus_status = 0;  // hal::BusStatus as int
   std::uint32_t flags = 0;      // telemetry_flag bits
+  // The water's push on the vehicle, body x and y (N): as the servo estimates it (the negated
+  // integral term), and in the sim the truth (the current's drag on a vehicle at rest).
+  std::array<double, 2> push_est_n{kNaN, kNaN};
+  std::array<double, 2> push_truth_n{kNaN, kNaN};
 };
 static_assert(std::is_trivially_copyable_v<TelemetryRecord>);
 static_assert(std::is_standard_layout_v<TelemetryRecord>);

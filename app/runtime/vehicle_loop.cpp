@@ -85,6 +85,7 @@ VehicleLoop::VehicleLoop(const AppConfig& config, const hal::StereoRig& rig,
   frame_.right_bgr.create(rig.right.height_px, rig.right.width_px, CV_8UC3);
   allocator_.neutral(neutral_);
   command_ = neutral_;
+  servo_.set_capacity(allocator_.axis_capacity());
 }
 
 bool VehicleLoop::arm(std::string& error) {
@@ -124,6 +125,7 @@ void VehicleLoop::check_thrusters(std::chrono::nanoseconds now, std::chrono::nan
   for (std::size_t i = 0; i < allocator_.effectiveness().count(); ++i) {
     if (!health_.failed(i) || !allocator_.active(i)) continue;
     thrusters_uncontrollable_ = !allocator_.remove_thruster(i);
+    servo_.set_capacity(allocator_.axis_capacity());
     LoopEvent e;
     e.time = now;
     e.from = e.to = mission_.state();
@@ -272,6 +274,11 @@ void VehicleLoop::mission_input(TickState& t) {
     in.soc_fraction = readings_.soc_fraction;
   }
   in.hold_force_n = last_hold_force_n_;
+  const control::DisturbanceEstimate& current = servo_.disturbance();
+  in.disturbance_settled = current.settled();
+  in.disturbance_at_limit = current.at_limit();
+  in.disturbance_rising = current.rising();
+  in.current_beyond_hold = current.beyond_hold();
   in.undock_requested = undock_requested_.load(std::memory_order_relaxed);
   in.now = t.now;
   in.recognised = t.seen;
@@ -348,7 +355,7 @@ void VehicleLoop::servo_wrench(TickState& t) {
     return;
   }
   if (!out.thrusters_enabled) return;
-  if (out.servo_active && out.servo_restart) servo_.reset();
+  if (out.servo_active && out.servo_restart) servo_.restart();
   if (out.keep_axial_trim) axial_trim_n_ = servo_.integral_term()[0];
   if (out.restore_axial_trim) servo_.set_integral_term(0, axial_trim_n_);
   servo_.hold_integral(0, out.hold_axial_trim);
@@ -513,6 +520,9 @@ void VehicleLoop::fill_record(const TickState& t, TelemetryRecord& rec) const {
     for (int i = 0; i < 6; ++i) rec.pose_error[i] = servo_.error()[i];
   }
   for (int i = 0; i < 6; ++i) rec.wrench_body[i] = t.wrench[i];
+  const control::DisturbanceEstimate& current = servo_.disturbance();
+  rec.push_est_n = {-current.wrench_body()[0], -current.wrench_body()[1]};
+  if (current.settled()) flags |= telemetry_flag::current_settled;
   rec.thruster_count = static_cast<std::int32_t>(command_.count);
   for (std::size_t i = 0; i < command_.count && i < hal::kMaxThrusters; ++i) {
     rec.thruster_cmd[i] = command_.thrust_fraction[i];

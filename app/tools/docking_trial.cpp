@@ -37,6 +37,19 @@ void score_against_truth(const Eigen::Isometry3d& truth, TelemetryRecord& r) {
   r.est_error_rad = Eigen::AngleAxisd(truth.linear().transpose() * q.toRotationMatrix()).angle();
 }
 
+// The current's drag on the vehicle at rest (N, body x and y): what the servo's estimate of the
+// push should converge to while it holds the vehicle still.
+void score_current_push(const hal::mock::WorldTruth& truth,
+                        const hal::mock::VehicleDynamicsParams& dynamics, TelemetryRecord& r) {
+  const Eigen::Vector3d v_c = truth.T_world_body.linear().transpose() * truth.current_world_mps;
+  for (int i = 0; i < 2; ++i) {
+    // Fossen's derivatives are negative: the water moving at v_c past a still hull drags it along.
+    r.push_truth_n[i] =
+        -(dynamics.damping_linear[i] + dynamics.damping_quadratic_linear[i] * std::abs(v_c[i])) *
+        v_c[i];
+  }
+}
+
 // The simulation's non-real-time side of one trial, run after each tick: logs the loop's events,
 // scores the telemetry against the simulator's truth, injects the mid-approach thruster failure,
 // keeps the recharging figures and notes the capture. The ring is drained every tick, so a
@@ -107,7 +120,9 @@ class TrialRecorder {
       if ((r.flags & telemetry_flag::full_view) != 0 && vehicle_.backends().sim != nullptr) {
         score_ok_tick(r);
       }
-      score_against_truth(world_.truth().T_cl_marker, r);
+      const hal::mock::WorldTruth truth = world_.truth();
+      score_against_truth(truth.T_cl_marker, r);
+      score_current_push(truth, world_.params().dynamics, r);
       if ((r.flags & telemetry_flag::recognised) && (r.flags & telemetry_flag::truth_valid)) {
         estimate_errors_mm_.push_back(r.est_error_m * 1000.0);
       }

@@ -213,6 +213,7 @@ void plot_trial(const TrialResult& trial, const std::string& png_path) {
   const auto& recs = trial.records;
   std::vector<double> t;
   std::vector<double> est[3], truth[3], perr[4], fitness, state, err_mm, err_deg;
+  std::vector<double> push_est[2], push_truth[2];
   std::vector<double> thr[hal::kMaxThrusters];
   const int n_thr = recs.empty() ? 0 : recs.front().thruster_count;
   for (const TelemetryRecord& r : recs) {
@@ -224,6 +225,10 @@ void plot_trial(const TrialResult& trial, const std::string& png_path) {
     }
     for (int i = 0; i < 3; ++i) perr[i].push_back(r.pose_error[i] * 1000.0);
     perr[3].push_back(r.pose_error[5] * 180.0 / M_PI);
+    for (int i = 0; i < 2; ++i) {
+      push_est[i].push_back(r.push_est_n[i]);
+      push_truth[i].push_back(r.push_truth_n[i]);
+    }
     fitness.push_back(r.fitness);
     err_mm.push_back(has_est ? r.est_error_m * 1000.0 : NAN);
     err_deg.push_back(has_est ? r.est_error_rad * 180.0 / M_PI : NAN);
@@ -263,6 +268,11 @@ void plot_trial(const TrialResult& trial, const std::string& png_path) {
                             "[mm] / [deg]");
   p3.line("x fwd [mm]", t, perr[0]).line("y stbd [mm]", t, perr[1]).line("z down [mm]", t, perr[2]);
   p3.line("yaw [deg]", t, perr[3]);
+  auto& p3b =
+      plot.add_panel("The water's push on the vehicle (body): the servo's estimate vs truth",
+                     "time [s]", "force [N]");
+  p3b.line("estimate x fwd", t, push_est[0]).line("truth x fwd (at rest)", t, push_truth[0]);
+  p3b.line("estimate y stbd", t, push_est[1]).line("truth y stbd (at rest)", t, push_truth[1]);
   auto& p4 = plot.add_panel("RM-GA fitness of the best individual", "time [s]", "fitness");
   p4.line("fitness", t, fitness).hline(0.6, "recognised (0.6)").y_limits(0.0, 1.0);
   auto& p5 = plot.add_panel("Thruster commands", "time [s]", "fraction of full thrust");

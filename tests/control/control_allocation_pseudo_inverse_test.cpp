@@ -1,5 +1,5 @@
-// ControlAllocator: exact solutions on a known matrix, weights, saturation that keeps the
-// wrench's direction, asymmetric limits, non-finite input.
+// ControlAllocator: exact solutions on a known matrix, weights, saturation that keeps heave and the
+// moments and scales surge and sway, asymmetric limits, non-finite input.
 #include "control/control_allocation_pseudo_inverse.hpp"
 
 #include <gtest/gtest.h>
@@ -80,23 +80,60 @@ TEST(ControlAllocator, BlueRov2ReproducesTheWrench) {
   EXPECT_GT(std::abs(f[4]), 0.1);
 }
 
-TEST(ControlAllocator, SaturationKeepsTheWrenchDirection) {
+// Holding against a current that takes the horizontal thrusters: heave and yaw are given whole and
+// surge and sway scaled by what the thrusters leave, not the whole wrench by one factor (which
+// would cut the heave that holds the stand-off's depth: the vehicle bobs while it holds).
+TEST(ControlAllocator, SaturationKeepsHeaveAndYawAndScalesSurgeAndSway) {
   const ControlAllocator alloc(hal::ThrusterLayout::bluerov2_heavy(), AllocationParams{});
   Wrench w;
-  w << 400.0, 150.0, -300.0, 0.0, 0.0, 40.0;  // far beyond the T200s
+  w << 150.0, 90.0, -30.0, 0.0, 0.0, 6.0;  // surge and sway beyond the T200s
   hal::ThrusterCommand cmd;
   const double fraction = alloc.allocate(w, cmd);
-  EXPECT_GT(fraction, 0.0);
+  EXPECT_GT(fraction, 0.2);
   EXPECT_LT(fraction, 1.0);
   double largest = 0.0;
   for (std::size_t i = 0; i < cmd.count; ++i) {
     EXPECT_LE(std::abs(cmd.thrust_fraction[i]), 1.0);
     largest = std::max(largest, std::abs(cmd.thrust_fraction[i]));
   }
-  EXPECT_NEAR(largest, 1.0, 1e-12);  // the busiest thruster is at its limit, no further
+  EXPECT_NEAR(largest, 1.0, 1e-9);  // the busiest thruster is at its limit, no further
   const Wrench achieved = alloc.effectiveness().wrench_for_command(cmd);
-  EXPECT_NEAR(cos_angle(achieved, w), 1.0, 1e-12);
-  EXPECT_NEAR(achieved.norm() / w.norm(), fraction, 1e-9);
+  for (int axis = 2; axis < 6; ++axis) EXPECT_NEAR(achieved[axis], w[axis], 1e-6) << axis;
+  // Surge and sway keep their direction, scaled by the fraction returned.
+  EXPECT_NEAR(achieved[0], fraction * w[0], 1e-6);
+  EXPECT_NEAR(achieved[1], fraction * w[1], 1e-6);
+  // One factor for the whole wrench would have given less heave than asked.
+  const ThrustVector f = alloc.thrust_for(w);
+  double worst = 0.0;
+  for (std::size_t i = 0; i < alloc.effectiveness().count(); ++i) {
+    worst = std::max(worst, std::abs(f[static_cast<Eigen::Index>(i)]) /
+                                alloc.effectiveness().limit_n(i, f[static_cast<Eigen::Index>(i)]));
+  }
+  EXPECT_GT(worst, 1.1);
+}
+
+// Heave and the moments alone beyond the thrusters: they are scaled by one factor, keeping their
+// direction, and surge and sway get nothing.
+TEST(ControlAllocator, SaturatedHeaveAndMomentsKeepTheirDirection) {
+  const ControlAllocator alloc(hal::ThrusterLayout::bluerov2_heavy(), AllocationParams{});
+  Wrench w;
+  w << 40.0, 0.0, -400.0, 0.0, 0.0, 40.0;  // far beyond the vertical T200s
+  hal::ThrusterCommand cmd;
+  EXPECT_EQ(alloc.allocate(w, cmd), 0.0);  // surge asked for, none given
+  const Wrench achieved = alloc.effectiveness().wrench_for_command(cmd);
+  EXPECT_NEAR(achieved[0], 0.0, 1e-6);
+  Wrench held = w;
+  held[0] = 0.0;
+  EXPECT_NEAR(cos_angle(achieved, held), 1.0, 1e-9);
+  double largest = 0.0;
+  for (std::size_t i = 0; i < cmd.count; ++i) {
+    largest = std::max(largest, std::abs(cmd.thrust_fraction[i]));
+  }
+  EXPECT_NEAR(largest, 1.0, 1e-9);
+  // Without surge or sway, the fraction is that common factor.
+  const double fraction = alloc.allocate(held, cmd);
+  EXPECT_GT(fraction, 0.0);
+  EXPECT_NEAR(alloc.effectiveness().wrench_for_command(cmd).norm() / held.norm(), fraction, 1e-9);
 }
 
 TEST(ControlAllocator, SaturationUsesTheReverseLimit) {
@@ -208,6 +245,28 @@ TEST(AllocatorWithoutAThruster, TwoHorizontalThrustersLostLeaveTheServoAxesUncon
   EXPECT_TRUE(allocator.remove_thruster(0));  // three vectored thrusters: x, y, yaw still
   EXPECT_FALSE(allocator.remove_thruster(1));
   EXPECT_FALSE(allocator.servo_axes_controllable());
+}
+
+TEST(ControlAllocator, AxisCapacityIsTheWeakerDirectionsLimit) {
+  ControlAllocator alloc(planar_layout(), linear());
+  const Wrench capacity = alloc.axis_capacity();
+  // Surge: 5 N a side each way, the reverse limit the weaker: 10 N. Yaw: one thruster forward,
+  // one in reverse at 0.5 m: the reverse one at 5 N makes 2 x 5 x 0.5 = 5 N m.
+  EXPECT_NEAR(capacity[0], 10.0, 1e-9);
+  EXPECT_NEAR(capacity[5], 5.0, 1e-9);
+  // Sway: no thruster acts along it.
+  EXPECT_EQ(capacity[1], 0.0);
+  // What allocate() gives at that capacity is exactly the limit, no more.
+  Wrench w = Wrench::Zero();
+  w[0] = -capacity[0];
+  hal::ThrusterCommand cmd;
+  EXPECT_NEAR(alloc.allocate(w, cmd), 1.0, 1e-9);
+  w[0] *= 1.1;
+  EXPECT_LT(alloc.allocate(w, cmd), 1.0);
+  // One thruster lost: less is left.
+  alloc.remove_thruster(0);
+  EXPECT_GT(alloc.axis_capacity()[0], 0.0);
+  EXPECT_LT(alloc.axis_capacity()[0], 10.0 - 1e-6);
 }
 
 }  // namespace

@@ -279,6 +279,40 @@ TEST_F(RechargeMissionTest, VisionSeeingTheProbeOutOfTheSocketIsAnUnseat) {
   EXPECT_EQ(m.reseats(), 1);
 }
 
+// The tide turning the current onto the axis pushes the probe back out of the seat, where no
+// integral sees it (the axial error is nil): the push grows while it slips, shrinks once seated.
+TEST_F(RechargeMissionTest, ThePushGrowsWhileTheProbeSlipsOutAndShrinksOnceSeated) {
+  Mission m = make();
+  to_charging(m);
+  const RechargeParams& r = params.recharge;
+  MissionOutput out = ticks(m, Charge{}, 2s);
+  EXPECT_NEAR(out.push_body[0], r.charge_push_n, 1e-6);
+  // Backed out by twice the slip, still short of an unseat: the push rises at the rise rate.
+  Charge slipping;
+  slipping.back_m = -0.02 + 2.0 * r.seat_slip_m;
+  ASSERT_LT(2.0 * r.seat_slip_m, 0.02 + r.vision_unseat_m);
+  out = ticks(m, slipping, 1s);
+  EXPECT_EQ(out.state, MissionState::charging);
+  const double grown_n = out.push_body[0] - r.charge_push_n;
+  EXPECT_NEAR(grown_n, r.seat_trim_rise_nps * 1.0, r.seat_trim_rise_nps * 0.05);
+  // Within the slip of the deepest seat the push holds what it learnt, giving it back slowly.
+  Charge seated;
+  seated.back_m = -0.02 + 0.5 * r.seat_slip_m;
+  out = ticks(m, seated, 2s);
+  EXPECT_NEAR(out.push_body[0] - r.charge_push_n, grown_n - 2.0 * r.seat_trim_decay_nps, 0.05);
+  EXPECT_GT(out.push_body[0], r.charge_push_n);
+  // The seat contact lost says the same as vision, even where vision does not see it.
+  Charge lifted;
+  lifted.contact = false;
+  const double before_n = out.push_body[0];
+  out = ticks(m, lifted, 198ms);  // under unseat_confirm_s: no re-seat yet
+  ASSERT_EQ(out.state, MissionState::charging);
+  EXPECT_GT(out.push_body[0], before_n + 0.5 * r.seat_trim_rise_nps * 0.198);
+  // Never past the overload: the hold gives way to UNDOCK there.
+  out = ticks(m, slipping, 60s);
+  EXPECT_LE(out.push_body[0], r.overload_force_n + 1e-9);
+}
+
 TEST_F(RechargeMissionTest, CurrentBeyondTheHoldUndocksAndDeparts) {
   Mission m = make();
   to_charging(m);

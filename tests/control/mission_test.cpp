@@ -45,8 +45,17 @@ class MissionTest : public ::testing::Test {
     in.T_cl_marker = T;
     in.contact = contact;
     in.attitude_aided = attitude_aided;
+    in.disturbance_settled = settled;
+    in.disturbance_at_limit = at_limit;
+    in.disturbance_rising = rising;
+    in.current_beyond_hold = beyond_hold;
     return m.update(in);
   }
+  // The servo's estimate of the current, as the next ticks report it.
+  bool settled = true;
+  bool at_limit = false;
+  bool rising = false;
+  bool beyond_hold = false;
   bool attitude_aided = false;  // the next ticks' partial views have the attitude sensor's rotation
   MissionOutput blind(Mission& m) { return tick(m, false, Eigen::Isometry3d::Identity()); }
   static std::vector<std::string> drain(Mission& m) {
@@ -220,6 +229,66 @@ TEST_F(MissionTest, APassingOccluderPausesTheDockWithoutAborting) {
   tick(m, true, seen_at({0.0, 0, 0}), true);
   for (int k = 0; k < params.contact_frames + 1; ++k) tick(m, true, seen_at({0.0, 0, 0}), true);
   EXPECT_EQ(m.state(), MissionState::docked);
+  EXPECT_EQ(m.aborts(), 0);
+}
+
+// A gust carries the probe off the axis near the socket: the set-point waits where it is (the
+// servo brings the probe back) rather than pushing it in off the axis; back on it, the push goes
+// on.
+TEST_F(MissionTest, DockWaitsWhileTheProbeIsOffTheAxis) {
+  Mission m = make();
+  to_dock(m);
+  const double off_m = 2.0 * params.dock_wait_lateral_m;  // under dock_abort_lateral_m
+  ASSERT_LT(off_m, params.dock_abort_lateral_m);
+  auto setpoint_m = [](const MissionOutput& out) {
+    return out.T_cl_marker_desired.translation().norm();
+  };
+  MissionOutput out = tick(m, true, seen_at({0.3, 0, 0}));
+  // Carried off the axis and held there (a gust): the low-passed error crosses the line within
+  // a few frames, and from then on the set-point waits where it is.
+  for (int k = 0; k < 10; ++k) out = tick(m, true, seen_at({0.3, 0, off_m}));
+  const double waiting = setpoint_m(out);
+  for (int k = 0; k < 20; ++k) out = tick(m, true, seen_at({0.3, 0, off_m}));
+  EXPECT_EQ(out.state, MissionState::dock);
+  EXPECT_NEAR(setpoint_m(out), waiting, 1e-9);
+  // Back on the axis, the push goes on.
+  for (int k = 0; k < 10; ++k) out = tick(m, true, seen_at({0.3, 0, 0}));
+  EXPECT_LT(setpoint_m(out), waiting - 1e-4) << "the push goes on";
+  // Swinging as fast as the frames from one side to the other (a vibrating mount): no drift to
+  // wait for.
+  const double swinging = setpoint_m(out);
+  for (int k = 0; k < 20; ++k) out = tick(m, true, seen_at({0.3, 0, k % 2 == 0 ? off_m : -off_m}));
+  EXPECT_LT(setpoint_m(out), swinging - 1e-4) << "a swing is no drift";
+  EXPECT_EQ(m.aborts(), 0);
+}
+
+// The servo lags DOCK's ramp by centimetres: a wait that left the set-point where the ramp had
+// put it would let the probe coast on into the face off the axis.
+TEST_F(MissionTest, DockWaitHoldsTheSetPointBehindTheProbe) {
+  Mission m = make();
+  to_dock(m);
+  // How far back from docked along the axis a pose seen_at() puts the marker.
+  auto back_m = [this](const Eigen::Isometry3d& T_cl_marker) {
+    return (T_body_cl * T_cl_marker * docked.inverse() * T_body_cl.inverse()).translation().x();
+  };
+  const double probe_back_m = 0.1;
+  MissionOutput out;
+  // The probe stays 10 cm out while the ramp runs on past it.
+  const int ramp_ticks = static_cast<int>((params.standoff_m / params.dock_speed_mps) / 0.033);
+  for (int k = 0; k < ramp_ticks; ++k) out = tick(m, true, seen_at({probe_back_m, 0, 0}));
+  ASSERT_EQ(out.state, MissionState::dock);
+  ASSERT_LT(back_m(out.T_cl_marker_desired), probe_back_m - 0.05) << "the ramp ran ahead";
+  // A gust carries it off the axis: the set-point comes back behind the probe and stays there.
+  const double off_m = 2.0 * params.dock_wait_lateral_m;
+  for (int k = 0; k < 10; ++k) out = tick(m, true, seen_at({probe_back_m, 0, off_m}));
+  EXPECT_NEAR(back_m(out.T_cl_marker_desired), probe_back_m + params.dock_wait_backoff_m, 1e-9);
+  for (int k = 0; k < 20; ++k) out = tick(m, true, seen_at({probe_back_m, 0, off_m}));
+  EXPECT_NEAR(back_m(out.T_cl_marker_desired), probe_back_m + params.dock_wait_backoff_m, 1e-9);
+  // Back on the axis, the push goes on from there, not from where the ramp had been.
+  for (int k = 0; k < 20; ++k) out = tick(m, true, seen_at({probe_back_m, 0, 0}));
+  const double resumed_m = back_m(out.T_cl_marker_desired);
+  EXPECT_LT(resumed_m, probe_back_m + params.dock_wait_backoff_m);
+  EXPECT_GT(resumed_m, probe_back_m - 0.05);
   EXPECT_EQ(m.aborts(), 0);
 }
 
@@ -503,6 +572,97 @@ TEST_F(MissionTest, StandOffLiesBackAlongTheDockingAxis) {
   // Docked pose: the marker's docking axis is the camera's optical axis.
   EXPECT_NEAR((m.standoff_T_cl_marker().translation() - docked.translation()).z(),
               params.standoff_m, 1e-9);
+}
+
+TEST_F(MissionTest, AlignCountsOnlyOnceTheCurrentsEstimateHasSettled) {
+  const double stand = params.standoff_m;
+  Mission m = make();
+  to_approach(m);
+  tick(m, true, seen_at({stand, 0, 0}));
+  ASSERT_EQ(m.state(), MissionState::align);
+  settled = false;
+  for (int k = 0; k < 3 * params.align_hold_frames; ++k) tick(m, true, seen_at({stand, 0, 0}));
+  EXPECT_EQ(m.state(), MissionState::align) << "aligned while the estimate was still learning";
+  settled = true;
+  for (int k = 0; k < params.align_hold_frames - 1; ++k) tick(m, true, seen_at({stand, 0, 0}));
+  EXPECT_EQ(m.state(), MissionState::align);
+  tick(m, true, seen_at({stand, 0, 0}));
+  EXPECT_EQ(m.state(), MissionState::dock);
+  // Never settled: the timeout says so.
+  Mission n = make();
+  to_approach(n);
+  tick(n, true, seen_at({stand, 0, 0}));
+  settled = false;
+  const int timeout_ticks = static_cast<int>(params.align_timeout_s / 0.033) + 2;
+  for (int k = 0; k < timeout_ticks && n.state() == MissionState::align; ++k)
+    tick(n, true, seen_at({stand, 0, 0}));
+  EXPECT_EQ(n.state(), MissionState::abort);
+  EXPECT_EQ(drain(n).back(), "align>abort:align timed out: current not settled");
+}
+
+TEST_F(MissionTest, ACurrentBeyondHoldFailsTheMissionWithoutRetrying) {
+  for (const MissionState where :
+       {MissionState::approach, MissionState::align, MissionState::dock}) {
+    Mission m = make();
+    if (where == MissionState::dock) {
+      to_dock(m);
+    } else {
+      to_approach(m);
+      if (where == MissionState::align) tick(m, true, seen_at({params.standoff_m, 0, 0}));
+    }
+    ASSERT_EQ(m.state(), where);
+    beyond_hold = true;
+    const MissionOutput out = tick(m, true, seen_at({params.standoff_m, 0.02, 0}));
+    beyond_hold = false;
+    EXPECT_EQ(out.state, MissionState::failed) << to_string(where);
+    EXPECT_FALSE(out.thrusters_enabled);
+    EXPECT_TRUE(m.finished());
+    EXPECT_EQ(m.aborts(), 0);
+    EXPECT_EQ(drain(m).back(), std::string(to_string(where)) + ">failed:current beyond hold");
+  }
+  // The marker swept out of view while the estimate was at its limit: the same verdict, at once.
+  Mission m = make();
+  to_approach(m);
+  at_limit = true;
+  for (int k = 0; k < params.lost_frames; ++k) blind(m);
+  at_limit = false;
+  EXPECT_EQ(m.state(), MissionState::failed);
+  EXPECT_EQ(drain(m).back(), "approach>failed:current beyond hold");
+}
+
+// A current that sweeps the marker from view before its estimate reaches the limit: the first
+// loss while the estimate is still rising searches again; the mission.beyond_hold_losses-th ends
+// the mission. Settling in view between the losses clears the count.
+TEST_F(MissionTest, TheMarkerSweptAwayTwiceWhileTheEstimateRisesIsBeyondHold) {
+  Mission m = make();
+  to_approach(m);
+  settled = false;
+  rising = true;
+  for (int k = 0; k < params.lost_frames; ++k) blind(m);
+  blind(m);  // ABORT searches at once after a loss before the dock
+  EXPECT_EQ(m.state(), MissionState::search);
+  EXPECT_EQ(m.aborts(), 1);
+  for (int k = 0; k < params.acquire_frames; ++k) tick(m, true, seen_at({2.0, 0.2, 0.1}));
+  ASSERT_EQ(m.state(), MissionState::approach);
+  for (int k = 0; k < params.lost_frames; ++k) blind(m);
+  EXPECT_EQ(m.state(), MissionState::failed);
+  EXPECT_EQ(drain(m).back(), "approach>failed:current beyond hold");
+
+  // Settled in view after the first loss: the second is an ordinary abort.
+  Mission n = make();
+  to_approach(n);
+  for (int k = 0; k < params.lost_frames + 1; ++k) blind(n);
+  for (int k = 0; k < params.acquire_frames; ++k) tick(n, true, seen_at({2.0, 0.2, 0.1}));
+  settled = true;
+  rising = false;
+  tick(n, true, seen_at({2.0, 0.2, 0.1}));
+  settled = false;
+  rising = true;
+  for (int k = 0; k < params.lost_frames + 1; ++k) blind(n);
+  EXPECT_EQ(n.state(), MissionState::search);
+  EXPECT_EQ(n.aborts(), 2);
+  settled = true;
+  rising = false;
 }
 
 }  // namespace

@@ -287,5 +287,66 @@ TEST_F(PdVisualServoTest, NonFiniteInputGivesNaNAndKeepsState) {
   EXPECT_TRUE(servo.update(measured(moved({0.2, 0, 0})), desired, 33ms).allFinite());
 }
 
+TEST_F(PdVisualServoTest, TheIntegralTurnsWithTheStationAsTheBodyTurns) {
+  ServoParams p = params();
+  p.kp_linear.setZero();
+  p.kd_linear.setZero();
+  p.ki_linear = {10.0, 10.0, 10.0};
+  PdVisualServo servo(p, T_body_cl);
+  const Eigen::Isometry3d m = measured(moved({0.0, 0.1, 0.0}));
+  servo.update(m, desired, 33ms);
+  for (int k = 0; k < 10; ++k) servo.update(m, desired, 100ms);
+  const double learnt = servo.integral_term()[1];
+  ASSERT_GT(learnt, 1.0);
+  // Seen again 2 s later (too late to integrate) with the body turned 0.5 rad about z: the push
+  // is fixed to the station, so in body axes it has turned by as much.
+  const double a = 0.5;
+  servo.update(measured(turned(a, Eigen::Vector3d::UnitZ())), desired, 2s);
+  EXPECT_NEAR(servo.integral_term()[0], -learnt * std::sin(a), 1e-9);
+  EXPECT_NEAR(servo.integral_term()[1], learnt * std::cos(a), 1e-9);
+  EXPECT_NEAR(servo.integral_term()[2], 0.0, 1e-9);
+}
+
+TEST_F(PdVisualServoTest, ALongApproachDoesNotWindTheIntegralUp) {
+  ServoParams p = params();
+  p.ki_linear = {20.0, 30.0, 30.0};
+  PdVisualServo servo(p, T_body_cl);
+  // Closing a clipped error at the speed the gains set (kp x clip / kd): what a calm approach does.
+  const double speed = p.kp_linear[0] * p.max_position_error_m / p.kd_linear[0];
+  double x = 1.2;
+  for (int k = 0; k < 75; ++k, x -= speed * 0.033) {  // 2.5 s
+    servo.update(measured(moved({x, 0.0, 0.0})), desired, 33ms);
+  }
+  ASSERT_GT(x, p.max_position_error_m);
+  // A plain integral of the clipped error would hold 20 x 0.2 x 2.5 = 10 N by now.
+  EXPECT_LT(std::abs(servo.integral_term()[0]), 1.5);
+  // At a standstill off the set-point (once the rate has died away) it integrates the error as a
+  // plain integral does: 20 x 0.05 = 1 N/s.
+  for (int k = 0; k < 30; ++k) servo.update(measured(moved({0.05, 0.0, 0.0})), desired, 33ms);
+  const double before = servo.integral_term()[0];
+  for (int k = 0; k < 60; ++k) servo.update(measured(moved({0.05, 0.0, 0.0})), desired, 33ms);
+  EXPECT_NEAR(servo.integral_term()[0] - before, 20.0 * 0.05 * 60 * 0.033, 0.2);
+}
+
+TEST_F(PdVisualServoTest, ARestartKeepsTheCurrentsEstimateAResetClearsIt) {
+  ServoParams p = params();
+  p.kp_linear.setZero();
+  p.kd_linear.setZero();
+  p.ki_linear = {10.0, 10.0, 10.0};
+  PdVisualServo servo(p, T_body_cl);
+  const Eigen::Isometry3d m = measured(moved({0.0, 0.1, 0.0}));
+  servo.update(m, desired, 33ms);
+  for (int k = 0; k < 10; ++k) servo.update(m, desired, 100ms);
+  const double learnt = servo.integral_term()[1];
+  ASSERT_GT(learnt, 1.0);
+  servo.hold_integral(1, true);
+  servo.restart();
+  EXPECT_NEAR(servo.integral_term()[1], learnt, 1e-12);
+  servo.update(m, desired, 100ms);
+  EXPECT_GT(servo.integral_term()[1], learnt);  // released by the restart
+  servo.reset();
+  EXPECT_TRUE(servo.integral_term().isZero());
+}
+
 }  // namespace
 }  // namespace rovctl::control
