@@ -99,6 +99,7 @@ BASE_EXPOSURE = 1.3
 # POV-Ray renders at this multiple of the real sampling, with this many lamp samples per axis; --draft
 # lowers both (1x, 2x2) for sets that need many pairs more than the finest shading.
 RENDER = {"ideal_scale": 2.0, "lamp_samples": 4}
+DRAFT_RENDER = {"ideal_scale": 1.0, "lamp_samples": 2}
 SUPERSAMPLE = 3  # sub-samples per axis and real pixel when mapping the ideal render into the real camera
 OVERHEAD_LAMP = (0.25, -1.4, -0.55)  # marker frame, above and in front of the station
 SIDE_LIGHT_PATH = 1.0  # metres of water the side light crosses before the station
@@ -997,6 +998,39 @@ CONDITION_BUILDERS = {
 # One pair
 
 
+def render_camera_image(cam, pose, spec, post, workdir, tag, noise_rng):
+    """8-bit BGR image of one view as the camera delivers it: the water render at the exposure `post`
+    asks for, then the sensor noise and stream when it asks for them (drawn from noise_rng)."""
+    lin = render_view(cam, pose, spec, workdir, tag, post.get("motion"))
+    lin = lin * (BASE_EXPOSURE * post.get("exposure", 1.0))
+    if post.get("noise"):
+        return sensor_noise_jpeg(lin, noise_rng, post)
+    return to_8bit(lin)
+
+
+def sphere_visibility(cam, pose, spec, workdir, tag):
+    """({sphere: visible share}, {sphere: share hidden by bars}) in one view: the share of each sphere's
+    image area on the sensor, less what the bars hide as measured from sphere-ID renders with and without
+    them (the second dict is empty when the scene has no bars)."""
+    centres = sphere_centres(pose.in_cam(cam))
+    vis = {}
+    hidden = {}
+    if spec.get("bars"):
+        with_b = render_mask(cam, pose, spec, workdir, tag + "_mw", True)
+        without_b = render_mask(cam, pose, spec, workdir, tag + "_mo", False)
+    for i, (name, _, _) in enumerate(SPHERES):
+        f = in_image_fraction(cam, centres[i])
+        if spec.get("bars"):
+            ch = 2 - i  # BGR
+            a_with = float(with_b[:, :, ch].sum())
+            a_without = float(without_b[:, :, ch].sum())
+            h = 0.0 if a_without < 1.0 else max(0.0, 1.0 - a_with / a_without)
+            hidden[name] = round(h, 3)
+            f *= 1.0 - h
+        vis[name] = round(f, 3)
+    return vis, hidden
+
+
 def pair_rng(seed, condition, index):
     return np.random.default_rng([int(seed), CONDITIONS.index(POSE_TWIN.get(condition, condition)), int(index)])
 
@@ -1032,34 +1066,11 @@ def make_pair(rig, condition, index, seed, out_dir, pose_override=None, stream=N
     try:
         for cam in rig.cams:
             tag = "%s_%03d_%s" % (condition, index, cam.name)
-            lin = render_view(cam, pose, spec, work, tag, post.get("motion"))
-            lin = lin * (BASE_EXPOSURE * post.get("exposure", 1.0))
-            if post.get("noise"):
-                img8 = sensor_noise_jpeg(lin, noise_rng, post)
-            else:
-                img8 = to_8bit(lin)
+            img8 = render_camera_image(cam, pose, spec, post, work, tag, noise_rng)
             rel = "%s/%03d_%s.png" % (condition, index, cam.name)
             cv2.imwrite(os.path.join(out_dir, rel), img8, [cv2.IMWRITE_PNG_COMPRESSION, 9])
             entry[cam.name] = rel
-
-            # Visibility: share of each sphere's image area on the sensor, less what the bars hide as
-            # measured from sphere-ID renders with and without them.
-            centres = sphere_centres(pose.in_cam(cam))
-            vis = {}
-            hidden = {}
-            if spec.get("bars"):
-                with_b = render_mask(cam, pose, spec, work, tag + "_mw", True)
-                without_b = render_mask(cam, pose, spec, work, tag + "_mo", False)
-            for i, (name, _, _) in enumerate(SPHERES):
-                f = in_image_fraction(cam, centres[i])
-                if spec.get("bars"):
-                    ch = 2 - i  # BGR
-                    a_with = float(with_b[:, :, ch].sum())
-                    a_without = float(without_b[:, :, ch].sum())
-                    h = 0.0 if a_without < 1.0 else max(0.0, 1.0 - a_with / a_without)
-                    hidden[name] = round(h, 3)
-                    f *= 1.0 - h
-                vis[name] = round(f, 3)
+            vis, hidden = sphere_visibility(cam, pose, spec, work, tag)
             entry["spheres_visible_" + cam.name] = vis
             if hidden and condition == "occlusion":
                 entry["occluded_fraction_" + cam.name] = hidden[extra["occluded_sphere"]]
@@ -1135,7 +1146,7 @@ def main(argv=None):
                     "(about 4x cheaper; softer sphere rims, noisier lamp shadows)")
     args = ap.parse_args(argv)
     if args.draft:
-        RENDER.update(ideal_scale=1.0, lamp_samples=2)
+        RENDER.update(DRAFT_RENDER)
 
     if shutil.which("povray") is None:
         raise SystemExit("povray not found (Debian package 'povray')")
