@@ -174,12 +174,10 @@ void describe(hal::ParamVisitor& v, RechargeParams& p) {
   v.param("seat_trim_rise_nps", p.seat_trim_rise_nps,
           {"N/s", 0.0, 100.0,
            "CHARGING: the push grows at this rate while the probe slips out of the seat (the "
-           "contact lost, or seen seat_slip_m short of its deepest), up to overload_force_n"});
+           "contact lost, or seen short of mission.vision_contact_depth_m), up to "
+           "overload_force_n"});
   v.param("seat_trim_decay_nps", p.seat_trim_decay_nps,
           {"N/s", 0.0, 100.0, "CHARGING: the added push shrinks at this rate while seated"});
-  v.param("seat_slip_m", p.seat_slip_m,
-          {"m", 0.0005, 0.05,
-           "CHARGING: the probe seen this far short of the deepest it sat is slipping out"});
   v.param("soc_complete_fraction", p.soc_complete_fraction,
           {"-", 0.0, 1.0, "state of charge that completes the charge"});
   v.param("complete_current_a", p.complete_current_a,

@@ -188,7 +188,6 @@ void Mission::restart(std::chrono::nanoseconds now, const char* reason) {
   keep_axial_trim_ = restore_axial_trim_ = false;
   reseats_ = 0;
   seat_trim_n_ = 0.0;
-  seat_deepest_valid_ = false;
   dock_start_back_m_ = p_.standoff_m;
 }
 
@@ -535,13 +534,8 @@ void Mission::dock_outputs(const Sight& s, MissionOutput& out) {
 
 void Mission::update_seat_trim(const Sight& s) {
   const RechargeParams& r = p_.recharge;
-  bool slipping = state_ == MissionState::dock || (p_.contact_switch && !s.in.contact);
-  if (s.seen_dock && state_ == MissionState::charging) {
-    seat_deepest_m_ =
-        seat_deepest_valid_ ? std::max(seat_deepest_m_, s.err.axial_m) : s.err.axial_m;
-    seat_deepest_valid_ = true;
-    slipping = slipping || s.err.axial_m < seat_deepest_m_ - r.seat_slip_m;
-  }
+  const bool slipping = state_ == MissionState::dock || (p_.contact_switch && !s.in.contact) ||
+                        (s.seen_dock && s.err.axial_m < p_.vision_contact_depth_m);
   const double dt_s = seconds(s.tick);
   seat_trim_n_ = slipping ? std::min(seat_trim_n_ + r.seat_trim_rise_nps * dt_s,
                                      std::max(0.0, r.overload_force_n - r.charge_push_n))

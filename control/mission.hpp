@@ -256,10 +256,7 @@ class Mission {
   bool keep_axial_trim_ = false;     // the next output asks to keep the axial trim
   bool restore_axial_trim_ = false;  // ... to restore it
   int reseats_ = 0;
-  // The push CHARGING adds against the current's axial part, and the deepest seat seen.
-  double seat_trim_n_ = 0.0;
-  double seat_deepest_m_ = 0.0;
-  bool seat_deepest_valid_ = false;
+  double seat_trim_n_ = 0.0;          // the push CHARGING adds against the current's axial part
   double dock_start_back_m_ = 0.0;    // DOCK's set-point starts this far back (re-seat: from here)
   double undock_start_back_m_ = 0.0;  // UNDOCK's set-point starts here
   std::chrono::nanoseconds charging_since_{0};  // the first CHARGING entry (the time limit)

@@ -287,17 +287,16 @@ TEST_F(RechargeMissionTest, ThePushGrowsWhileTheProbeSlipsOutAndShrinksOnceSeate
   const RechargeParams& r = params.recharge;
   MissionOutput out = ticks(m, Charge{}, 2s);
   EXPECT_NEAR(out.push_body[0], r.charge_push_n, 1e-6);
-  // Backed out by twice the slip, still short of an unseat: the push rises at the rise rate.
+  // Seen short of the contact depth, still short of an unseat: the push rises at the rise rate.
   Charge slipping;
-  slipping.back_m = -0.02 + 2.0 * r.seat_slip_m;
-  ASSERT_LT(2.0 * r.seat_slip_m, 0.02 + r.vision_unseat_m);
+  slipping.back_m = -0.5 * params.vision_contact_depth_m;
+  ASSERT_LT(0.5 * params.vision_contact_depth_m, r.vision_unseat_m + params.vision_contact_depth_m);
   out = ticks(m, slipping, 1s);
   EXPECT_EQ(out.state, MissionState::charging);
   const double grown_n = out.push_body[0] - r.charge_push_n;
   EXPECT_NEAR(grown_n, r.seat_trim_rise_nps * 1.0, r.seat_trim_rise_nps * 0.05);
-  // Within the slip of the deepest seat the push holds what it learnt, giving it back slowly.
+  // Seated again, the push holds what it learnt, giving it back slowly.
   Charge seated;
-  seated.back_m = -0.02 + 0.5 * r.seat_slip_m;
   out = ticks(m, seated, 2s);
   EXPECT_NEAR(out.push_body[0] - r.charge_push_n, grown_n - 2.0 * r.seat_trim_decay_nps, 0.05);
   EXPECT_GT(out.push_body[0], r.charge_push_n);
