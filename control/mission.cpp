@@ -437,8 +437,7 @@ MissionOutput Mission::outputs(const Sight& s) {
       out.T_cl_marker_desired =
           s.seen_dock ? offset_along_docking_axis(T_docked_, -s.err.axial_m) : T_docked_;
       servo_when(s.seen_dock, out);
-      update_seat_trim(s);
-      out.push_body.head<3>() = docked_axis_body_ * (p_.recharge.charge_push_n + seat_trim_n_);
+      press_seat(s, out);
       break;
     case MissionState::undock:
       undock_outputs(s, out);
@@ -523,16 +522,13 @@ void Mission::dock_outputs(const Sight& s, MissionOutput& out) {
   // steer_dock, and the aided wait
   servo_when(s.full || (s.seen && s.in.attitude_aided), out);
   // A re-seat keeps pressing while it slides back in, the harder for having slipped out.
-  if (charging_started_) {
-    update_seat_trim(s);
-    out.push_body.head<3>() = docked_axis_body_ * (p_.recharge.charge_push_n + seat_trim_n_);
-  }
+  if (charging_started_) press_seat(s, out);
   if (!s.steer_dock && blind_since_.count() >= 0) {
     out.wrench_override_body.head<3>() = docked_axis_body_ * p_.dock_blind_push_n;
   }
 }
 
-void Mission::update_seat_trim(const Sight& s) {
+void Mission::press_seat(const Sight& s, MissionOutput& out) {
   const RechargeParams& r = p_.recharge;
   const bool slipping = state_ == MissionState::dock || (p_.contact_switch && !s.in.contact) ||
                         (s.seen_dock && s.err.axial_m < p_.vision_contact_depth_m);
@@ -540,6 +536,7 @@ void Mission::update_seat_trim(const Sight& s) {
   seat_trim_n_ = slipping ? std::min(seat_trim_n_ + r.seat_trim_rise_nps * dt_s,
                                      std::max(0.0, r.overload_force_n - r.charge_push_n))
                           : std::max(seat_trim_n_ - r.seat_trim_decay_nps * dt_s, 0.0);
+  out.push_body.head<3>() = docked_axis_body_ * (r.charge_push_n + seat_trim_n_);
 }
 
 void Mission::undock_outputs(const Sight& s, MissionOutput& out) const {

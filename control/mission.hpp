@@ -193,7 +193,8 @@ class Mission {
   static void servo_when(bool in_view, MissionOutput& out);
   void search_outputs(const Sight& s, MissionOutput& out) const;
   void dock_outputs(const Sight& s, MissionOutput& out);
-  void update_seat_trim(const Sight& s);
+  // The push along the docked axis into the seat: the charge push plus the seat trim, updated.
+  void press_seat(const Sight& s, MissionOutput& out);
   void undock_outputs(const Sight& s, MissionOutput& out) const;
   void enter(MissionState to, std::chrono::nanoseconds now, const char* reason);
   // APPROACH or ALIGN lost the marker: an abort that searches at once, without backing off;
