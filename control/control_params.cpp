@@ -174,10 +174,15 @@ void describe(hal::ParamVisitor& v, RechargeParams& p) {
   v.param("seat_trim_rise_nps", p.seat_trim_rise_nps,
           {"N/s", 0.0, 100.0,
            "CHARGING: the push grows at this rate while the probe slips out of the seat (the "
-           "contact lost, or seen short of mission.vision_contact_depth_m), up to "
+           "contact lost, or seen seat_slip_m short of the socket's bottom), up to "
            "overload_force_n"});
   v.param("seat_trim_decay_nps", p.seat_trim_decay_nps,
           {"N/s", 0.0, 100.0, "CHARGING: the added push shrinks at this rate while seated"});
+  v.param("seat_slip_m", p.seat_slip_m,
+          {"m", 0.0, 0.1,
+           "CHARGING: the probe seen (over a tenth of a second) this far short of the socket's "
+           "bottom (station.capture_depth_m) is slipping out; not shallower than "
+           "mission.vision_contact_depth_m"});
   v.param("soc_complete_fraction", p.soc_complete_fraction,
           {"-", 0.0, 1.0, "state of charge that completes the charge"});
   v.param("complete_current_a", p.complete_current_a,

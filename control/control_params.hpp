@@ -199,11 +199,13 @@ struct RechargeParams {
   // Pressed on the socket's bottom the axial error is nil, so no integral learns the current's
   // axial part while the tide turns it; the seat trim does: it adds to the push at
   // seat_trim_rise_nps while the probe slips (the seat contact lost, or vision seeing the probe
-  // short of mission.vision_contact_depth_m), and gives it back at seat_trim_decay_nps once seated.
-  // Not against the deepest seat seen: the seat is compliant, so a harder push sits deeper, and
-  // that reference ratcheted the push up to the overload limit after one knock.
-  double seat_trim_rise_nps = 2.0;
+  // seat_slip_m short of the socket's bottom, station.capture_depth_m), and gives it back at
+  // seat_trim_decay_nps once seated. Not against the deepest seat seen: the seat is compliant, so
+  // a harder push sits deeper, and that reference ratcheted the push up to the overload limit
+  // after one knock.
+  double seat_trim_rise_nps = 5.0;
   double seat_trim_decay_nps = 0.1;
+  double seat_slip_m = 0.0025;
   // Charge complete: SoC at or above soc_complete_fraction, or the charge current below
   // complete_current_a once the SoC is past complete_min_soc_fraction (the charger's taper).
   double soc_complete_fraction = 0.95;

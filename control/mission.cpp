@@ -67,7 +67,7 @@ Eigen::Isometry3d offset_along_docking_axis(const Eigen::Isometry3d& T_cl_marker
 
 Mission::Mission(const MissionParams& params, const Eigen::Isometry3d& T_body_cl,
                  const Eigen::Isometry3d& T_cl_marker_docked,
-                 const Eigen::Vector3d& control_point_body_m)
+                 const Eigen::Vector3d& control_point_body_m, double seat_depth_m)
     : p_(params),
       T_body_cl_(T_body_cl),
       T_docked_(T_cl_marker_docked),
@@ -76,6 +76,7 @@ Mission::Mission(const MissionParams& params, const Eigen::Isometry3d& T_body_cl
   recharge_ = p_.kind == "recharge";
   departed_hold_ = p_.recharge.departed_action == "hold";
   dock_start_back_m_ = p_.standoff_m;
+  slip_depth_m_ = std::max(p_.vision_contact_depth_m, seat_depth_m - p_.recharge.seat_slip_m);
   cp_docked_marker_m_ = (T_body_cl_ * T_docked_).inverse() * control_point_body_m_;
   // Blind, the vehicle pushes along the docking axis as it lies when docked: the servo has just
   // aligned it, and one noisy last estimate would be a worse guess.
@@ -188,6 +189,7 @@ void Mission::restart(std::chrono::nanoseconds now, const char* reason) {
   keep_axial_trim_ = restore_axial_trim_ = false;
   reseats_ = 0;
   seat_trim_n_ = 0.0;
+  seat_depth_seen_valid_ = false;
   dock_start_back_m_ = p_.standoff_m;
 }
 
@@ -521,7 +523,7 @@ void Mission::dock_outputs(const Sight& s, MissionOutput& out) {
   out.T_cl_marker_desired = offset_along_docking_axis(T_docked_, back);
   // steer_dock, and the aided wait
   servo_when(s.full || (s.seen && s.in.attitude_aided), out);
-  // A re-seat keeps pressing while it slides back in, the harder for having slipped out.
+  // A re-seat keeps pressing with what CHARGING had learnt while it slides back in.
   if (charging_started_) press_seat(s, out);
   if (!s.steer_dock && blind_since_.count() >= 0) {
     out.wrench_override_body.head<3>() = docked_axis_body_ * p_.dock_blind_push_n;
@@ -530,12 +532,26 @@ void Mission::dock_outputs(const Sight& s, MissionOutput& out) {
 
 void Mission::press_seat(const Sight& s, MissionOutput& out) {
   const RechargeParams& r = p_.recharge;
-  const bool slipping = state_ == MissionState::dock || (p_.contact_switch && !s.in.contact) ||
-                        (s.seen_dock && s.err.axial_m < p_.vision_contact_depth_m);
   const double dt_s = seconds(s.tick);
-  seat_trim_n_ = slipping ? std::min(seat_trim_n_ + r.seat_trim_rise_nps * dt_s,
-                                     std::max(0.0, r.overload_force_n - r.charge_push_n))
-                          : std::max(seat_trim_n_ - r.seat_trim_decay_nps * dt_s, 0.0);
+  if (s.seen_dock) {
+    // A tenth of a second: the estimate's axial noise in the seat is a fraction of a millimetre,
+    // a probe the current draws out moves a centimetre a second.
+    const double share = seat_depth_seen_valid_ ? 1.0 - std::exp(-dt_s / 0.1) : 1.0;
+    seat_depth_seen_m_ += share * (s.err.axial_m - seat_depth_seen_m_);
+    seat_depth_seen_valid_ = true;
+  }
+  // Short of the socket's bottom by seat_slip_m the pins still touch, so the push grows before
+  // the contact is lost, not after; the bottom is the station's, so a harder push (deeper in the
+  // compliant seat) cannot move the reference. A re-seat's DOCK keeps the trim as it is: out of
+  // the seat the probe is short of the bottom however well the push holds, and a trim grown
+  // there pressed a knocked vehicle sideways off the axis.
+  const bool slipping =
+      (p_.contact_switch && !s.in.contact) || (s.seen_dock && seat_depth_seen_m_ < slip_depth_m_);
+  if (state_ == MissionState::charging) {
+    seat_trim_n_ = slipping ? std::min(seat_trim_n_ + r.seat_trim_rise_nps * dt_s,
+                                       std::max(0.0, r.overload_force_n - r.charge_push_n))
+                            : std::max(seat_trim_n_ - r.seat_trim_decay_nps * dt_s, 0.0);
+  }
   out.push_body.head<3>() = docked_axis_body_ * (r.charge_push_n + seat_trim_n_);
 }
 

@@ -119,9 +119,12 @@ class Mission {
 
   // control_point_body_m: the body point that must meet the socket (the probe tip); lateral and
   // axial errors are measured there. The docked pose comes from hal::docked_T_cl_marker().
+  // seat_depth_m: how far past the socket mouth the seated probe sits (the socket's bottom,
+  // hal::DockingStation::capture_depth_m); 0 when not known.
   Mission(const MissionParams& params, const Eigen::Isometry3d& T_body_cl,
           const Eigen::Isometry3d& T_cl_marker_docked,
-          const Eigen::Vector3d& control_point_body_m = Eigen::Vector3d::Zero());
+          const Eigen::Vector3d& control_point_body_m = Eigen::Vector3d::Zero(),
+          double seat_depth_m = 0.0);
 
   // One tick. `in.now` must not go backwards. No allocation.
   MissionOutput update(const MissionInput& in);
@@ -257,6 +260,10 @@ class Mission {
   bool keep_axial_trim_ = false;     // the next output asks to keep the axial trim
   bool restore_axial_trim_ = false;  // ... to restore it
   int reseats_ = 0;
+  // Seen this short of the socket mouth (low-passed) in the seat, the probe is slipping out.
+  double slip_depth_m_ = 0.0;
+  double seat_depth_seen_m_ = 0.0;  // the seated depth seen, low-passed
+  bool seat_depth_seen_valid_ = false;
   double seat_trim_n_ = 0.0;          // the push CHARGING adds against the current's axial part
   double dock_start_back_m_ = 0.0;    // DOCK's set-point starts this far back (re-seat: from here)
   double undock_start_back_m_ = 0.0;  // UNDOCK's set-point starts here

@@ -138,8 +138,9 @@ const std::array<MissionStateRow, kMissionStateCount> kTable = {{
     {S::charging, "DOCKED on the recharging mission", kChargingExits,
      "servo on lateral and yaw, the set-point following the probe; the push "
      "`mission.recharge.charge_push_n` along the docked axis plus the seat trim (rising while "
-     "the probe slips out, `mission.recharge.seat_trim_rise_nps`); the axial trim DOCK kept, not "
-     "integrated"},
+     "the probe slips out, `mission.recharge.seat_trim_rise_nps`, seen "
+     "`mission.recharge.seat_slip_m` short of the socket's bottom or the contact lost); the axial "
+     "trim DOCK kept, not integrated"},
     {S::undock, "CHARGING ends the charge; a failsafe at the station backs out", kUndockExits,
      "servo to a set-point moving out at `mission.recharge.undock_speed_mps` to the stand-off; "
      "unseen: "

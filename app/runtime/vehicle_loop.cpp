@@ -74,7 +74,7 @@ VehicleLoop::VehicleLoop(const AppConfig& config, const hal::StereoRig& rig,
       mission_(config.mission, config.vehicle.T_body_cl(),
                hal::docked_T_cl_marker(config.vehicle.T_body_cl(), config.vehicle.probe_tip_body_m,
                                        config.station),
-               config.vehicle.probe_tip_body_m),
+               config.vehicle.probe_tip_body_m, config.station.capture_depth_m),
       failsafe_(config.control.failsafe),
       aided_pose_(config.vehicle.T_body_cl(),
                   std::chrono::duration_cast<std::chrono::nanoseconds>(

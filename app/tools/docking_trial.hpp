@@ -59,7 +59,7 @@ struct RechargeResult {
   double unseated_unnoticed_max_s = 0.0;  // longest unseated stretch still in CHARGING
   int reseats = 0;
   double hold_wh = 0.0;        // thruster energy from the first CHARGING to UNDOCK
-  double charged_wh = 0.0;     // put in by the charger
+  double charged_wh = 0.0;     // given by the charger (to the battery and the loads)
   double hold_fraction = 0.0;  // hold_wh / charged_wh (0 when nothing was charged)
   double soc_start = 0.0;
   double soc_end = 0.0;

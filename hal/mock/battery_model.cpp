@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace rovctl::hal::mock {
 
@@ -52,15 +53,21 @@ double BatteryModel::accepted_current_a(double offer_a) const {
   return std::clamp(offer_a, 0.0, limit);
 }
 
-void BatteryModel::step(double dt_s, double charge_current_a, double thruster_power_w) {
+void BatteryModel::step(double dt_s, double charger_offer_a, double thruster_power_w) {
   if (dt_s <= 0.0) return;
   const double hours = dt_s / 3600.0;
-  const double in_wh = charge_current_a * voltage_v() * hours;
-  const double thrusters_wh = thruster_power_w * hours;
-  charged_wh_ += in_wh;
-  thruster_wh_ += thrusters_wh;
-  soc_ = std::clamp(soc_ + (in_wh - thrusters_wh - p_.hotel_power_w * hours) / p_.capacity_wh, 0.0,
-                    1.0);
+  const double v = voltage_v();
+  // In the taper the charger holds the bus at its set-point and still feeds the loads: a hold
+  // that drew from the battery there would stall the charge below full however long it lasted.
+  const double load_a = (thruster_power_w + p_.hotel_power_w) / v;
+  charger_current_a_ =
+      std::clamp(accepted_current_a(std::numeric_limits<double>::infinity()) + load_a, 0.0,
+                 std::max(0.0, charger_offer_a));
+  const double battery_a = charger_current_a_ - load_a;
+  charge_current_a_ = std::max(0.0, battery_a);
+  charged_wh_ += charger_current_a_ * v * hours;
+  thruster_wh_ += thruster_power_w * hours;
+  soc_ = std::clamp(soc_ + battery_a * v * hours / p_.capacity_wh, 0.0, 1.0);
 }
 
 }  // namespace rovctl::hal::mock

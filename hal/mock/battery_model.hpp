@@ -1,5 +1,7 @@
 // The vehicle's battery as the recharging mission sees it: state of charge, the current it accepts
 // from a charger (constant current, then a constant-voltage taper), and what the thrusters draw.
+// The charger sits on the vehicle's bus beside the battery: it feeds the thrusters and the
+// electronics first, and the battery takes what it accepts of the rest.
 #pragma once
 
 #include "hal/mock/thruster_model.hpp"
@@ -34,13 +36,17 @@ class BatteryModel {
   // The current the battery takes at its present SoC when a charger offers up to `offer_a`.
   double accepted_current_a(double offer_a) const;
 
-  // `dt_s` of charging at `charge_current_a` (into the battery) while the thrusters draw
-  // `thruster_power_w` and the electronics the hotel load.
-  void step(double dt_s, double charge_current_a, double thruster_power_w);
+  // `dt_s` with a charger offering up to `charger_offer_a` on the bus while the thrusters draw
+  // `thruster_power_w` and the electronics the hotel load: the charger gives the loads plus what
+  // the battery accepts, within its offer; a load beyond the offer comes out of the battery.
+  void step(double dt_s, double charger_offer_a, double thruster_power_w);
 
   double soc_fraction() const { return soc_; }
   double voltage_v() const;
-  double charged_wh() const { return charged_wh_; }  // energy put in by the charger
+  double charged_wh() const { return charged_wh_; }  // energy the charger gave (loads included)
+  // The last step's current into the battery (0 while it discharges) and out of the charger.
+  double charge_current_a() const { return charge_current_a_; }
+  double charger_current_a() const { return charger_current_a_; }
   double thruster_wh() const { return thruster_wh_; }
   const BatteryParams& params() const { return p_; }
 
@@ -49,6 +55,8 @@ class BatteryModel {
   double soc_ = 0.5;
   double charged_wh_ = 0.0;
   double thruster_wh_ = 0.0;
+  double charge_current_a_ = 0.0;
+  double charger_current_a_ = 0.0;
 };
 
 }  // namespace rovctl::hal::mock

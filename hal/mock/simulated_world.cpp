@@ -232,9 +232,8 @@ void SimulatedWorld::update_charge(double dt_s) {
   const bool seated = docking_.seated;
   const double scale = seated ? params_.recharge.seated_time_scale : 1.0;
   const double battery_dt_s = dt_s * scale;
-  const double current_a = battery_.accepted_current_a(charger_.offer_a(seated, charger_failed_));
   const double thruster_wh_before = battery_.thruster_wh();
-  battery_.step(battery_dt_s, current_a,
+  battery_.step(battery_dt_s, charger_.offer_a(seated, charger_failed_),
                 thruster_power_w(thrusters_, params_.recharge.battery.thruster_power_w_per_n1_5));
   if (seated) {
     charge_.seated_thruster_wh += battery_.thruster_wh() - thruster_wh_before;
@@ -243,7 +242,7 @@ void SimulatedWorld::update_charge(double dt_s) {
   charge_.battery_time_s += battery_dt_s;
   charge_.soc_fraction = battery_.soc_fraction();
   charge_.battery_voltage_v = battery_.voltage_v();
-  charge_.charge_current_a = current_a;
+  charge_.charge_current_a = battery_.charge_current_a();
   charge_.charged_wh = battery_.charged_wh();
   charge_.thruster_wh = battery_.thruster_wh();
 }

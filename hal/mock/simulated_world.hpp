@@ -52,7 +52,7 @@ struct ChargeTruth {
   double soc_fraction = 0.0;
   double battery_voltage_v = 0.0;
   double charge_current_a = 0.0;    // into the battery now
-  double charged_wh = 0.0;          // put in by the charger so far
+  double charged_wh = 0.0;          // given by the charger so far (the loads' share too)
   double thruster_wh = 0.0;         // drawn by the thrusters so far
   double seated_thruster_wh = 0.0;  // drawn by the thrusters while seated: the hold's energy
   double seated_s = 0.0;            // physics time seated

@@ -293,12 +293,15 @@ TEST_F(RechargeMissionTest, ThePushGrowsWhileTheProbeSlipsOutAndShrinksOnceSeate
   ASSERT_LT(0.5 * params.vision_contact_depth_m, r.vision_unseat_m + params.vision_contact_depth_m);
   out = ticks(m, slipping, 1s);
   EXPECT_EQ(out.state, MissionState::charging);
+  // The seen depth is low-passed over a tenth of a second: the rise starts a few ticks late.
   const double grown_n = out.push_body[0] - r.charge_push_n;
-  EXPECT_NEAR(grown_n, r.seat_trim_rise_nps * 1.0, r.seat_trim_rise_nps * 0.05);
-  // Seated again, the push holds what it learnt, giving it back slowly.
+  EXPECT_GT(grown_n, r.seat_trim_rise_nps * 0.85);
+  EXPECT_LE(grown_n, r.seat_trim_rise_nps * 1.0 + 1e-9);
+  // Seated again, the push holds what it learnt, giving it back slowly (after the filter's lag).
   Charge seated;
   out = ticks(m, seated, 2s);
-  EXPECT_NEAR(out.push_body[0] - r.charge_push_n, grown_n - 2.0 * r.seat_trim_decay_nps, 0.05);
+  EXPECT_NEAR(out.push_body[0] - r.charge_push_n, grown_n - 2.0 * r.seat_trim_decay_nps,
+              0.15 * r.seat_trim_rise_nps);
   EXPECT_GT(out.push_body[0], r.charge_push_n);
   // The seat contact lost says the same as vision, even where vision does not see it.
   Charge lifted;
@@ -310,6 +313,34 @@ TEST_F(RechargeMissionTest, ThePushGrowsWhileTheProbeSlipsOutAndShrinksOnceSeate
   // Never past the overload: the hold gives way to UNDOCK there.
   out = ticks(m, slipping, 60s);
   EXPECT_LE(out.push_body[0], r.overload_force_n + 1e-9);
+}
+
+// Told where the socket's bottom is, the hold sees the probe slip while the pins still touch: a
+// few millimetres out of the bottom, long before the contact depth.
+TEST_F(RechargeMissionTest, ThePushGrowsWhenSeenShortOfTheSocketBottom) {
+  const double bottom_m = 0.02;
+  Mission m(params, T_body_cl, docked, geometry.probe_tip_body_m, bottom_m);
+  to_charging(m);
+  const RechargeParams& r = params.recharge;
+  ASSERT_GT(bottom_m - 2.0 * r.seat_slip_m, params.vision_contact_depth_m);
+  Charge pressed;
+  pressed.back_m = -bottom_m;
+  MissionOutput out = ticks(m, pressed, 2s);
+  EXPECT_NEAR(out.push_body[0], r.charge_push_n, 1e-6);
+  Charge within;  // inside the slip margin: seated
+  within.back_m = -(bottom_m - 0.5 * r.seat_slip_m);
+  out = ticks(m, within, 1s);
+  EXPECT_NEAR(out.push_body[0], r.charge_push_n, 1e-6);
+  Charge drawn_out;  // past it, the pins still closed
+  drawn_out.back_m = -(bottom_m - 2.0 * r.seat_slip_m);
+  out = ticks(m, drawn_out, 1s);
+  EXPECT_EQ(out.state, MissionState::charging);
+  EXPECT_GT(out.push_body[0] - r.charge_push_n, 0.85 * r.seat_trim_rise_nps);
+  // The mission without the station's depth judges only by the contact depth: no growth there.
+  Mission blind_to_bottom = make();
+  to_charging(blind_to_bottom);
+  out = ticks(blind_to_bottom, drawn_out, 1s);
+  EXPECT_NEAR(out.push_body[0], r.charge_push_n, 1e-6);
 }
 
 TEST_F(RechargeMissionTest, CurrentBeyondTheHoldUndocksAndDeparts) {

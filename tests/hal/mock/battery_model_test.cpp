@@ -39,6 +39,31 @@ TEST(BatteryModel, ChargeAndThrusterEnergyMoveTheStateOfCharge) {
   EXPECT_NEAR(b.soc_fraction(), soc - 25.0 / p.capacity_wh, 1e-9);
 }
 
+// On the bus the charger feeds the hold: in the taper the battery still takes all it accepts, and
+// only a load past the charger's limit comes out of the battery.
+TEST(BatteryModel, TheChargerFeedsTheThrustersBesideTheBattery) {
+  BatteryParams p;
+  p.hotel_power_w = 0.0;
+  BatteryModel b(p);
+  b.reset(0.9);  // halfway through the taper: the battery accepts half the maximum
+  const double v = b.voltage_v();
+  b.step(1.0, 18.0, 80.0);
+  EXPECT_NEAR(b.charge_current_a(), 0.5 * p.max_charge_current_a, 1e-9);
+  EXPECT_NEAR(b.charger_current_a(), 0.5 * p.max_charge_current_a + 80.0 / v, 1e-9);
+  EXPECT_GT(b.soc_fraction(), 0.9);
+  b.reset(0.5);  // constant current: the charger at its limit, the load takes its share
+  const double v_half = b.voltage_v();
+  b.step(360.0, 18.0, 80.0);  // a tenth of an hour
+  EXPECT_NEAR(b.charger_current_a(), 18.0, 1e-9);
+  EXPECT_NEAR(b.charge_current_a(), 18.0 - 80.0 / v_half, 1e-9);
+  EXPECT_NEAR(b.soc_fraction(), 0.5 + 0.1 * (18.0 * v_half - 80.0) / p.capacity_wh, 1e-9);
+  EXPECT_NEAR(b.charged_wh(), 0.1 * 18.0 * v_half, 1e-9);
+  b.reset(0.5);  // a load past the offer: the battery gives the rest, and reads no charge
+  b.step(360.0, 2.0, 80.0);
+  EXPECT_DOUBLE_EQ(b.charge_current_a(), 0.0);
+  EXPECT_NEAR(b.soc_fraction(), 0.5 + 0.1 * (2.0 * v_half - 80.0) / p.capacity_wh, 1e-9);
+}
+
 TEST(BatteryModel, ThrusterPowerGrowsWithThrustToTheOneAndAHalf) {
   VehicleGeometry vehicle;
   ThrusterModelParams tp;
@@ -88,7 +113,11 @@ TEST(SimulatedWorldCharge, SeatedVehicleChargesFasterThanThePhysicsUntilTheCharg
   EXPECT_DOUBLE_EQ(world.charge().soc_fraction, 0.4);
   world.step_to(std::chrono::milliseconds(500));
   ASSERT_TRUE(world.docking().seated);
-  EXPECT_NEAR(world.charge().charge_current_a, p.recharge.charger.max_current_a, 1e-9);
+  // The charger's current less the electronics' share (no thrust: the vehicle is at rest).
+  EXPECT_NEAR(world.charge().charge_current_a,
+              p.recharge.charger.max_current_a -
+                  p.recharge.battery.hotel_power_w / world.charge().battery_voltage_v,
+              0.05);
   EXPECT_NEAR(world.charge().battery_time_s, 0.5 * 50.0, 1e-6);
   EXPECT_GT(world.charge().soc_fraction, 0.4);
   world.step_to(std::chrono::milliseconds(1200));
