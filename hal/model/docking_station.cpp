@@ -7,7 +7,9 @@ void describe(ParamVisitor& v, DockingStation& s) {
   v.param("socket_m", s.socket_marker_m,
           {"m", -2.0, 2.0, "charging socket mouth in the marker frame (docking axis = marker +z)"});
   v.param("capture_depth_m", s.capture_depth_m,
-          {"m", 0.0, 0.2, "probe depth past the socket mouth that counts as contact"});
+          {"m", 0.0, 0.2,
+           "probe depth past the socket mouth at the socket's bottom: contact, and where the "
+           "seated probe rests"});
 }
 
 Eigen::Isometry3d docked_T_cl_marker(const Eigen::Isometry3d& T_body_cl,

@@ -11,7 +11,7 @@ namespace rovctl::hal {
 struct DockingStation {
   // The socket mouth in the marker frame; the probe enters it along marker +z.
   Eigen::Vector3d socket_marker_m{0.0, 0.12, 0.0};
-  // Contact is made when the probe tip is this deep past the socket mouth.
+  // The socket's bottom: contact is made, and the seated probe rests, this deep past the mouth.
   double capture_depth_m = 0.02;
 };
 
