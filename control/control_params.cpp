@@ -177,6 +177,10 @@ void describe(hal::ParamVisitor& v, PoseTrackerParams& p) {
           {"-", 0.0, 1.0,
            "nor below this share of the newest estimate's own bound (consecutive estimates share "
            "their errors)"});
+  v.param("partial_point_mm", p.partial_point_mm,
+          {"mm", 0.0, 100.0,
+           "a partial view's sphere centres (supported in both views) lie within this: with the "
+           "track's rotation they update its translation; 0: partial views not used"});
   v.param("velocity_window_s", p.velocity_window_s,
           {"s", 0.05, 10.0,
            "the velocity is the slope of the fused positions over this much of the history"});

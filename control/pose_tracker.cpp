@@ -25,6 +25,8 @@ const char* to_string(TrackSource source) {
       return "fused";
     case TrackSource::coasting:
       return "coasting";
+    case TrackSource::aided:
+      return "aided";
     case TrackSource::none:
       break;
   }
@@ -102,10 +104,52 @@ void PoseTracker::fuse(const WorldPose& prediction, const WorldPose& m) {
   track_.bound_deg = std::max({params_.floor_deg, params_.fused_bound_share * m.bound_deg,
                                1.0 / std::sqrt(wp_deg + wm_deg)});
   track_.at = m.at;
-  history_[history_next_] = Sample{track_.at, track_.p_w};
+  sound_at_ = m.at;
+  remember(track_);
+}
+
+void PoseTracker::remember(const WorldPose& pose) {
+  history_[history_next_] = Sample{pose.at, pose.p_w};
   history_next_ = (history_next_ + 1) % kHistory;
   history_size_ = std::min(history_size_ + 1, kHistory);
   estimate_velocity();
+}
+
+bool PoseTracker::aid(const WorldPose& prediction, const PoseMeasurement& m,
+                      const Eigen::Matrix3d& R_world_cl, std::chrono::nanoseconds capture) {
+  if (params_.partial_point_mm <= 0.0 || m.points <= 0 || m.points > PoseMeasurement::kMaxPoints ||
+      !m.T_cl_marker.matrix().allFinite()) {
+    return false;
+  }
+  // The least-squares translation with the rotation fixed: the mean of the points' offsets. Its
+  // bound: the points' own, plus the rotation's bound swinging them about the marker's origin.
+  const Eigen::Matrix3d R_cl_marker = R_world_cl.transpose() * prediction.R_world_marker;
+  Eigen::Vector3d t = Eigen::Vector3d::Zero();
+  double lever_m = 0.0;
+  for (int i = 0; i < m.points; ++i) {
+    const Eigen::Vector3d& c = m.points_marker_m[i];
+    t += m.T_cl_marker * c - R_cl_marker * c;
+    lever_m = std::max(lever_m, c.norm());
+  }
+  WorldPose aided = prediction;
+  aided.p_w = R_world_cl * (t / static_cast<double>(m.points));
+  aided.bound_m = params_.partial_point_mm / 1000.0 + lever_m * prediction.bound_deg / kDegPerRad;
+  const double innovation_m = (aided.p_w - prediction.p_w).norm();
+  if (innovation_m > std::hypot(aided.bound_m, prediction.bound_m)) return false;
+  // An unrefined fit's depth is loose (a pixel of disparity is centimetres at a metre): a partial
+  // view that moved the spheres away from the prediction is trusted no closer than it moved them.
+  aided.bound_m = std::max(aided.bound_m, innovation_m);
+  const double wp = 1.0 / std::max(1e-12, prediction.bound_m * prediction.bound_m);
+  const double wm = 1.0 / std::max(1e-12, aided.bound_m * aided.bound_m);
+  track_.p_w = (wp * prediction.p_w + wm * aided.p_w) / (wp + wm);
+  track_.bound_m = std::max({params_.floor_mm / 1000.0, params_.fused_bound_share * aided.bound_m,
+                             1.0 / std::sqrt(wp + wm)});
+  // The rotation is the prediction's, its bound grown from the last sound estimate on.
+  track_.R_world_marker = prediction.R_world_marker;
+  track_.bound_deg = prediction.bound_deg;
+  track_.at = capture;
+  remember(track_);
+  return true;
 }
 
 void PoseTracker::estimate_velocity() {
@@ -166,7 +210,7 @@ TrackedPose PoseTracker::output(const WorldPose& pose, const Eigen::Matrix3d& R_
   out.T_cl_marker.translation() = R_world_cl.transpose() * pose.p_w;
   out.bound_m = pose.bound_m;
   out.bound_deg = pose.bound_deg;
-  out.age = capture - track_.at;
+  out.age = capture - sound_at_;
   out.ok = source != TrackSource::none && seconds(out.age) <= params_.max_coast_s &&
            out.bound_m <= ok_bound_m_ && out.bound_deg <= ok_bound_deg_;
   return out;
@@ -186,7 +230,7 @@ const TrackedPose& PoseTracker::update(std::chrono::nanoseconds capture,
   const Eigen::Matrix3d R = R_world_cl(q_world_body, attitude_valid);
   if (attitude_valid) last_R_world_cl_ = R;
   // A track not fused for longer than it may coast has nothing left to gate with.
-  if (have_track_ && seconds(capture - track_.at) > params_.max_coast_s) have_track_ = false;
+  if (have_track_ && seconds(capture - sound_at_) > params_.max_coast_s) have_track_ = false;
   if (have_candidate_ && seconds(capture - candidate_.at) > params_.max_coast_s) {
     have_candidate_ = false;
   }
@@ -216,10 +260,12 @@ const TrackedPose& PoseTracker::update(std::chrono::nanoseconds capture,
       candidate_ = m;
       have_candidate_ = true;
     }
+  } else if (have_track_ && aid(predicted(capture, attitude_valid), measurement, R, capture)) {
+    source = TrackSource::aided;
   }
+  const bool fused = source == TrackSource::fused || source == TrackSource::aided;
   out_ = have_track_
-             ? output(source == TrackSource::fused ? track_ : predicted(capture, attitude_valid), R,
-                      source, capture)
+             ? output(fused ? track_ : predicted(capture, attitude_valid), R, source, capture)
              : TrackedPose{};
   out_.rejected = rejected;
   return out_;

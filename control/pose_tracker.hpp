@@ -34,6 +34,10 @@ struct PoseTrackerParams {
   // errors (the same water, the same fit's lean: a turbid approach's rotation was 2-3 deg off for
   // ten frames in a row), so agreeing frames are not independent draws that average out.
   double fused_bound_share = 1.0;
+  // A partial view's supported sphere centres (in both views) lie within this of the truth: with
+  // the track's rotation they fix the translation while a sphere is hidden. 0: partial views are
+  // not used.
+  double partial_point_mm = 3.0;
   // The velocity is the slope of the fused positions over this much of the track's history: a
   // longer window averages the estimates' noise but lags an accelerating vehicle by half of it.
   double velocity_window_s = 0.2;
@@ -47,12 +51,19 @@ struct PoseMeasurement {
   Eigen::Isometry3d T_cl_marker = Eigen::Isometry3d::Identity();
   double bound_m = 0.0;
   double bound_deg = 0.0;
+  // Not sound but recognised: the marker points (sphere centres) the estimate is supported by in
+  // both views, 0..kMaxPoints of them; the tracker places them with T_cl_marker and its own
+  // rotation to update the translation.
+  static constexpr int kMaxPoints = 3;
+  int points = 0;
+  std::array<Eigen::Vector3d, kMaxPoints> points_marker_m{};
 };
 
 enum class TrackSource : std::uint8_t {
   none = 0,      // no track
   fused = 1,     // this frame's estimate agreed with the track and was fused into it
   coasting = 2,  // predicted from the last fused estimate
+  aided = 3,     // a partial view's spheres fused into the translation, the rotation predicted
 };
 const char* to_string(TrackSource source);
 
@@ -61,7 +72,7 @@ struct TrackedPose {
   TrackSource source = TrackSource::none;
   Eigen::Isometry3d T_cl_marker = Eigen::Isometry3d::Identity();
   double bound_m = 0.0, bound_deg = 0.0;
-  std::chrono::nanoseconds age{0};  // since the last fused estimate
+  std::chrono::nanoseconds age{0};  // since the last fused sound estimate
   bool rejected = false;            // this frame's sound estimate disagreed with the track
 };
 
@@ -116,6 +127,11 @@ class PoseTracker {
   bool agree(const WorldPose& a, const WorldPose& b) const;
   void start(const WorldPose& first, const WorldPose& second);
   void fuse(const WorldPose& prediction, const WorldPose& m);
+  // A partial view: the translation its points give with the predicted rotation, fused when it
+  // agrees with the prediction. False when it does not or has no points.
+  bool aid(const WorldPose& prediction, const PoseMeasurement& m, const Eigen::Matrix3d& R_world_cl,
+           std::chrono::nanoseconds capture);
+  void remember(const WorldPose& pose);
   void estimate_velocity();
   TrackedPose output(const WorldPose& pose, const Eigen::Matrix3d& R_world_cl, TrackSource source,
                      std::chrono::nanoseconds capture) const;
@@ -124,7 +140,8 @@ class PoseTracker {
   Eigen::Matrix3d R_body_cl_;
   double ok_bound_m_, ok_bound_deg_;
   bool have_track_ = false;
-  WorldPose track_;  // the last fused pose
+  WorldPose track_;                       // the last fused pose
+  std::chrono::nanoseconds sound_at_{0};  // the last sound estimate fused
   Eigen::Vector3d velocity_w_ = Eigen::Vector3d::Zero();
   double velocity_bound_mps_ = 0.0;
   bool have_candidate_ = false;

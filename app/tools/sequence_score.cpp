@@ -154,6 +154,15 @@ void score_one(const hal::StereoRig& rig, const hal::MarkerModel& marker,
     m.T_cl_marker = e.T_cl_marker;
     m.bound_m = e.error_bound_m;
     m.bound_deg = e.error_bound_deg;
+    // A partial view: the spheres it is supported by in both views, as the loop aids one.
+    for (std::size_t i = 0; !m.sound && e.recognised && i < marker.spheres.size() &&
+                            i < control::PoseMeasurement::kMaxPoints;
+         ++i) {
+      if (e.sphere_scores[0][i] >= params.sphere_support &&
+          e.sphere_scores[1][i] >= params.sphere_support) {
+        m.points_marker_m[m.points++] = marker.spheres[i].centre_marker_m;
+      }
+    }
     const control::TrackedPose& t = tracker.update(f.stamp, f.q_world_cam, true, m);
     FrameScore s;
     s.sequence = &seq;

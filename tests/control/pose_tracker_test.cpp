@@ -1,6 +1,7 @@
-// PoseTracker: coasting through a gap on a turning camera within its bound, a single sure and
-// wrong estimate rejected, the bound's growth and the coast's end, agreement tightening the bound,
-// and the track moving to a new pose only when a second estimate confirms it.
+// PoseTracker: coasting through a gap on a turning camera within its bound, a partial view's
+// spheres carrying the translation, a single sure and wrong estimate rejected, the bound's growth
+// and the coast's end, agreement tightening the bound, and the track moving to a new pose only when
+// a second estimate confirms it.
 #include "control/pose_tracker.hpp"
 
 #include <gtest/gtest.h>
@@ -100,6 +101,39 @@ TEST(PoseTracker, CoastsThroughAOneSecondGapOnATurningCameraWithinItsBound) {
   }
   EXPECT_GE(ok, 6);                                                    // the first 0.2 s at least
   EXPECT_EQ(feed(tracker, scene, 60, 61).source, TrackSource::fused);  // caught again at once
+}
+
+TEST(PoseTracker, APartialViewsSpheresCarryTheTranslationWhileOneIsHidden) {
+  const Scene scene;
+  PoseTracker tracker(params(), Eigen::Isometry3d::Identity(), kOkM, kOkDeg);
+  feed(tracker, scene, 0, 30);
+  int aided = 0;
+  for (int f = 30; f < 70; ++f) {  // 1.3 s of partial views: two spheres on the marker's x axis
+    const double t = f / 30.0;
+    PoseMeasurement m;
+    m.points = 2;
+    m.points_marker_m[0] = Eigen::Vector3d(-0.06, 0.0, 0.0);
+    m.points_marker_m[1] = Eigen::Vector3d(0.06, 0.0, 0.0);
+    // Free to turn about the line through them: 20 deg off, the two spheres still in place.
+    m.T_cl_marker = scene.T_cl_marker(t) * Eigen::AngleAxisd(20.0 * kDeg, Eigen::Vector3d::UnitX());
+    if (f == 50) m.T_cl_marker.translation() += Eigen::Vector3d(0.05, 0.0, 0.0);  // a misfit
+    const TrackedPose out = tracker.update(at_s(t), scene.q_world_cam(t), true, m);
+    const Eigen::Isometry3d truth = scene.T_cl_marker(t);
+    EXPECT_LE((out.T_cl_marker.translation() - truth.translation()).norm(), out.bound_m) << f;
+    EXPECT_LE(angle_deg(out.T_cl_marker.linear(), truth.linear()), out.bound_deg) << f;
+    EXPECT_EQ(out.source, f == 50 ? TrackSource::coasting : TrackSource::aided) << f;
+    EXPECT_TRUE(out.ok) << f;
+    if (out.source == TrackSource::aided) ++aided;
+  }
+  EXPECT_EQ(aided, 39);
+  // Past max_coast from the last sound estimate the partial views keep it no longer.
+  const double t = 76 / 30.0;
+  PoseMeasurement m;
+  m.points = 2;
+  m.points_marker_m[0] = Eigen::Vector3d(-0.06, 0.0, 0.0);
+  m.points_marker_m[1] = Eigen::Vector3d(0.06, 0.0, 0.0);
+  m.T_cl_marker = scene.T_cl_marker(t);
+  EXPECT_FALSE(tracker.update(at_s(t), scene.q_world_cam(t), true, m).ok);
 }
 
 TEST(PoseTracker, ASingleSureAndWrongEstimateIsRejected) {
