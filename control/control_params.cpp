@@ -146,6 +146,44 @@ void describe(hal::ParamVisitor& v, ControlParams& p) {
             [&p](hal::ParamVisitor& s) { describe(s, p.failsafe); });
   v.section("thruster_health", "failed thrusters detected from ESC telemetry, then not allocated",
             [&p](hal::ParamVisitor& s) { describe(s, p.thruster_health); });
+  v.section("tracker",
+            "the marker's pose carried across frames: sound estimates fused, declined frames "
+            "coasted on the attitude and the track's velocity with a growing bound",
+            [&p](hal::ParamVisitor& s) { describe(s, p.tracker); });
+}
+
+void describe(hal::ParamVisitor& v, PoseTrackerParams& p) {
+  v.param(
+      "max_coast_s", p.max_coast_s,
+      {"s", 0.0, 10.0, "the tracked pose is ok at most this long after the last fused estimate"});
+  v.param("accel_mps2", p.accel_mps2,
+          {"m/s^2", 0.0, 20.0,
+           "how fast the vehicle's velocity changes: a coast's position bound grows by half this "
+           "times its time squared"});
+  v.param("speed_mps", p.speed_mps,
+          {"m/s", 0.01, 10.0,
+           "the fastest the vehicle moves: the velocity's bound before the track has a history"});
+  v.param("attitude_drift_dps", p.attitude_drift_dps,
+          {"deg/s", 0.0, 90.0,
+           "the attitude sensor's error growth: a coast's rotation bound grows at this rate"});
+  v.param("turn_rate_dps", p.turn_rate_dps,
+          {"deg/s", 0.0, 720.0,
+           "the fastest the vehicle turns: the rotation bound's growth without a valid attitude"});
+  v.param("floor_mm", p.floor_mm,
+          {"mm", 0.0, 1000.0, "the fused position bound never goes below this"});
+  v.param("floor_deg", p.floor_deg,
+          {"deg", 0.0, 180.0, "the fused rotation bound never goes below this"});
+  v.param("fused_bound_share", p.fused_bound_share,
+          {"-", 0.0, 1.0,
+           "nor below this share of the newest estimate's own bound (consecutive estimates share "
+           "their errors)"});
+  v.param("partial_point_mm", p.partial_point_mm,
+          {"mm", 0.0, 100.0,
+           "a partial view's sphere centres (supported in both views) lie within this: with the "
+           "track's rotation they update its translation; 0: partial views not used"});
+  v.param("velocity_window_s", p.velocity_window_s,
+          {"s", 0.05, 10.0,
+           "the velocity is the slope of the fused positions over this much of the history"});
 }
 
 void describe(hal::ParamVisitor& v, ThrusterHealthParams& p) {

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "control/failsafe_policy.hpp"
+#include "control/pose_tracker.hpp"
 #include "hal/primitives/parameters.hpp"
 
 namespace rovctl::control {
@@ -186,8 +187,10 @@ struct ControlParams {
   AllocationParams allocation;
   FailsafeParams failsafe;
   ThrusterHealthParams thruster_health;
+  PoseTrackerParams tracker;
 };
 
+void describe(hal::ParamVisitor& v, PoseTrackerParams& p);
 void describe(hal::ParamVisitor& v, ControlParams& p);
 
 // The recharging mission after DOCKED: hold seated while charging, then back out and hand over.

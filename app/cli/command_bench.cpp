@@ -1,6 +1,7 @@
 // `rovctl bench`: the estimator's throughput (fitness evaluations/s, generations per 33 ms frame
 // per population size: the paper's Fig. 8) and convergence (cold-start frames, errors) on seeded
-// rendered pairs, for the configured (improved) mode and the paper's faithful mode in one run.
+// rendered pairs, for the configured (improved) mode and the paper's faithful mode in one run;
+// with --set, the score on a validation set; with --sequence, frame by frame on rendered sequences.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -19,6 +20,7 @@
 #include "app/runtime/errors.hpp"
 #include "app/runtime/vehicle_backends.hpp"
 #include "app/tools/json_writer.hpp"
+#include "app/tools/sequence_score.hpp"
 #include "app/tools/validation_set.hpp"
 #include "estimator/pose_estimator.hpp"
 #include "hal/mock/scene_renderer.hpp"
@@ -409,17 +411,134 @@ int bench_set(const AppConfig& config, const hal::StereoRig& rig, const std::str
   return kExitOk;
 }
 
+void arm_fields(JsonWriter& json, const char* key, const ArmCount& a) {
+  json.begin_object(key)
+      .field("frames", a.frames)
+      .field("right", a.right)
+      .field("ok_but_wrong", a.wrong)
+      .field("not_ok", a.not_ok)
+      .end_object();
+}
+
+// The tracker's own claim: on its ok frames the error is within the bound it gave. Returns the
+// tracked ok frames and those of them off by more than their bound.
+std::pair<int, int> beyond_bound(const SequenceScores& scores) {
+  int tracked_ok = 0, beyond = 0;
+  for (const FrameScore& s : scores.frames) {
+    if (!s.tracked_ok) continue;
+    ++tracked_ok;
+    if (s.tracked_mm > s.bound_mm || s.tracked_deg > s.bound_deg) ++beyond;
+  }
+  return {tracked_ok, beyond};
+}
+
+void print_rows(const char* title, const std::vector<SequenceScoreRow>& rows) {
+  std::printf("\n%-22s %6s | %8s %8s %6s | %8s %8s %6s\n", title, "frames", "right", "ok-wrong",
+              "not-ok", "right", "ok-wrong", "not-ok");
+  for (const SequenceScoreRow& r : rows) {
+    std::printf("%-22s %6d | %7.1f%% %8d %6d | %7.1f%% %8d %6d\n", r.label.c_str(), r.still.frames,
+                100.0 * r.still.right / std::max(1, r.still.frames), r.still.wrong, r.still.not_ok,
+                100.0 * r.tracked.right / std::max(1, r.tracked.frames), r.tracked.wrong,
+                r.tracked.not_ok);
+  }
+}
+
+// `rovctl bench --sequence DIR`: each rendered sequence frame by frame, the still estimator (with
+// the loop's confirmation) beside the same followed by the pose tracker.
+int bench_sequence(const AppConfig& config, const hal::StereoRig& rig, const std::string& dir,
+                   int updates, std::uint64_t seed, bool json_out, bool verbose) {
+  std::vector<RenderedSequence> sequences;
+  try {
+    sequences = load_sequences(dir);
+    if (verbose) std::fprintf(stderr, "%zu sequences from %s\n", sequences.size(), dir.c_str());
+  } catch (const std::invalid_argument& e) {
+    throw ConfigError(e.what());
+  }
+  SequenceScores scores;
+  try {
+    scores = score_sequences(rig, config.marker, config.estimator, config.control.tracker,
+                             sequences, updates, seed);
+  } catch (const std::invalid_argument& e) {
+    throw ConfigError(e.what());
+  }
+  if (verbose) {
+    for (const FrameScore& s : scores.frames) {
+      std::fprintf(stderr,
+                   "%-12s %3lu  still %-5s %6.1f mm %5.1f deg  (bound %5.1f mm %5.1f deg)  "
+                   "tracked %-5s %-8s %6.1f mm %5.1f deg  bound %5.1f mm %5.1f deg%s%s\n",
+                   s.sequence->name.c_str(), static_cast<unsigned long>(s.frame->frame),
+                   s.still_ok ? "ok" : "-", s.still_mm, s.still_deg, s.still_bound_mm,
+                   s.still_bound_deg, s.tracked_ok ? "ok" : "-", control::to_string(s.source),
+                   s.tracked_mm, s.tracked_deg, s.bound_mm, s.bound_deg,
+                   s.frame->hidden_sphere ? "  hidden" : "",
+                   s.frame->bubbles_on_sight_lines > 0 ? "  bubbles" : "");
+    }
+  }
+  if (json_out) {
+    JsonWriter json;
+    json.begin_object()
+        .field("sequences", dir)
+        .field("mode", config.estimator.mode)
+        .field("updates_per_frame", updates)
+        .field("seed", static_cast<long>(seed))
+        .field("right_translation_mm", kRightTranslationMm)
+        .field("right_rotation_deg", kRightRotationDeg);
+    for (const auto& [key, rows] :
+         {std::pair{"by_sequence", &scores.by_sequence}, std::pair{"by_kind", &scores.by_kind},
+          std::pair{"by_event", &scores.by_event}}) {
+      json.begin_array(key);
+      for (const SequenceScoreRow& r : *rows) {
+        json.begin_object().field("label", r.label);
+        arm_fields(json, "still", r.still);
+        arm_fields(json, "tracked", r.tracked);
+        json.end_object();
+      }
+      json.end_array();
+    }
+    const auto [tracked_ok, beyond] = beyond_bound(scores);
+    json.field("tracked_ok_frames", tracked_ok)
+        .field("tracked_ok_beyond_bound", beyond)
+        .end_object();
+    std::cout << json.str() << "\n";
+    return kExitOk;
+  }
+  std::printf(
+      "rovctl bench --sequence %s: %zu sequences, %zu frames, %d estimator update(s) per frame, "
+      "GA seed %lu, %s mode; right = within %.0f mm and %.0f deg\n"
+      "left: still (estimator + confirmation); right: tracked (+ pose tracker)\n",
+      dir.c_str(), sequences.size(), scores.frames.size(), updates,
+      static_cast<unsigned long>(seed), config.estimator.mode.c_str(), kRightTranslationMm,
+      kRightRotationDeg);
+  print_rows("sequence", scores.by_sequence);
+  print_rows("kind", scores.by_kind);
+  print_rows("frames", scores.by_event);
+  const auto [tracked_ok, beyond] = beyond_bound(scores);
+  std::printf("\ntracked ok frames with an error beyond the tracker's bound: %d of %d\n", beyond,
+              tracked_ok);
+  return kExitOk;
+}
+
 }  // namespace
 
 int command_bench(const Words& words) {
-  const CliArgs args = CliArgs::parse("bench", words,
-                                      {"--config", "--pairs", "--frame-cap", "--set", "--frames",
-                                       "--seed", "--range-bands-m", "--by", "--by-edges"},
-                                      {"--json", "--verbose"});
+  const CliArgs args =
+      CliArgs::parse("bench", words,
+                     {"--config", "--pairs", "--frame-cap", "--set", "--frames", "--seed",
+                      "--range-bands-m", "--by", "--by-edges", "--sequence"},
+                     {"--json", "--verbose"});
   const std::string config_file =
       args.has("--config") ? args.get("--config") : default_config_path();
   const AppConfig config = load_app_config(config_file);
   const hal::StereoRig rig = load_rig(config);
+  if (args.has("--set") && args.has("--sequence")) {
+    throw UsageError("rovctl bench: --set and --sequence are two benches; give one");
+  }
+  if (args.has("--sequence")) {
+    return bench_sequence(config, rig, args.get("--sequence"),
+                          static_cast<int>(args.get_int("--frames", 1, 1, 10000)),
+                          static_cast<std::uint64_t>(args.get_int("--seed", 0, 0, 1000000)),
+                          args.has("--json"), args.has("--verbose"));
+  }
   if (args.has("--set")) {
     return bench_set(
         config, rig, args.get("--set"), static_cast<int>(args.get_int("--frames", 10, 1, 10000)),

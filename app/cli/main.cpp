@@ -40,6 +40,9 @@ commands:
              [--by FIELD --by-edges E1,E2,...]
              the estimator on a validation set (DIR/manifest.json), per condition,
              per band of the marker's true range, and per band of a manifest number
+  bench      --sequence DIR [--frames N] [--seed S] [--json] [--verbose]
+             rendered sequences (DIR/sequences.json, or one sequence folder) frame by frame:
+             the still estimator beside it with the pose tracker (right / ok-but-wrong / not ok)
   study      [--config FILE] [--quick] [--seeds N] [--out DIR] [--json]
              the paper's GA-parameter study on this machine
   run        --config FILE                the vehicle, with the backends the config names

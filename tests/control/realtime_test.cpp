@@ -10,6 +10,7 @@
 #include "control/failsafe.hpp"
 #include "control/mission.hpp"
 #include "control/pd_visual_servo.hpp"
+#include "control/pose_tracker.hpp"
 #include "control/thruster_health.hpp"
 #include "hal/model/docking_station.hpp"
 #include "hal/model/vehicle_geometry.hpp"
@@ -86,6 +87,32 @@ TEST(Realtime, TickCallsDoNotAllocate) {
   EXPECT_EQ(t_allocations - before, 0u);
   EXPECT_TRUE(failsafe.tripped());
   EXPECT_GT(mission.aborts(), 0);
+}
+
+TEST(Realtime, PoseTrackerUpdatesDoNotAllocate) {
+  if (!rovctl::testing::malloc_hooks_installed()) {
+    GTEST_SKIP() << "malloc belongs to the sanitizer runtime";
+  }
+  PoseTracker tracker(PoseTrackerParams{}, hal::VehicleGeometry{}.T_body_cl(), 0.01, 5.0);
+  PoseMeasurement sound;
+  sound.sound = true;
+  sound.T_cl_marker.translation() = Eigen::Vector3d(0.05, 0.0, 0.8);
+  sound.bound_m = 0.004;
+  sound.bound_deg = 1.0;
+  PoseMeasurement partial = sound;
+  partial.sound = false;
+  partial.points = 2;
+  partial.points_marker_m[0] = Eigen::Vector3d(-0.06, 0.0, 0.0);
+  partial.points_marker_m[1] = Eigen::Vector3d(0.06, 0.0, 0.0);
+  const Eigen::Quaterniond q = Eigen::Quaterniond::Identity();
+  tracker.update(std::chrono::milliseconds(0), q, true, sound);  // a candidate, before counting
+  const std::uint64_t before = t_allocations;
+  for (int f = 1; f < 60; ++f) {  // start, fuse, aid, coast
+    const PoseMeasurement& m = f < 20 ? sound : (f < 40 ? partial : PoseMeasurement{});
+    tracker.update(std::chrono::milliseconds(33 * f), q, true, m);
+  }
+  EXPECT_EQ(t_allocations - before, 0u);
+  EXPECT_EQ(tracker.last().source, TrackSource::coasting);
 }
 
 TEST(Realtime, ThrusterFailureAndReallocationDoNotAllocate) {

@@ -1,5 +1,6 @@
 // `rovctl bench --set` split by a manifest number (`--by FIELD --by-edges ...`) on the committed
-// water-set sample, and the usage errors that name what is wrong before any pair is scored.
+// water-set sample, and the usage errors that name what is wrong before any pair is scored; a
+// sequence folder without its files named.
 #include <gtest/gtest.h>
 
 #include <string>
@@ -75,6 +76,13 @@ TEST(CommandBench, ASplitThatCannotBeMadeIsNamed) {
       error_of<UsageError>({"--set", kSample, "--by", "range_m", "--by-edges", "1,x"}).find("'x'"),
       std::string::npos);
   EXPECT_NE(error_of<UsageError>({"--by", "jpeg_quality", "--by-edges", "50"}).find("--set"),
+            std::string::npos);
+}
+
+TEST(CommandBench, ASequenceFolderWithoutItsFilesIsNamed) {
+  const std::string missing = error_of<ConfigError>({"--sequence", kSample});
+  EXPECT_NE(missing.find("sequence.json: missing"), std::string::npos) << missing;
+  EXPECT_NE(error_of<UsageError>({"--sequence", kSample, "--set", kSample}).find("give one"),
             std::string::npos);
 }
 

@@ -1,0 +1,274 @@
+// The marker's pose tracked across frames (see pose_tracker.hpp). No allocation.
+#include "control/pose_tracker.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "hal/primitives/duration_seconds.hpp"
+
+namespace rovctl::control {
+namespace {
+
+using hal::seconds;
+
+constexpr double kDegPerRad = 180.0 / M_PI;
+
+double angle_deg(const Eigen::Matrix3d& a, const Eigen::Matrix3d& b) {
+  return std::abs(Eigen::AngleAxisd(a.transpose() * b).angle()) * kDegPerRad;
+}
+
+}  // namespace
+
+const char* to_string(TrackSource source) {
+  switch (source) {
+    case TrackSource::fused:
+      return "fused";
+    case TrackSource::coasting:
+      return "coasting";
+    case TrackSource::aided:
+      return "aided";
+    case TrackSource::none:
+      break;
+  }
+  return "none";
+}
+
+PoseTracker::PoseTracker(const PoseTrackerParams& params, const Eigen::Isometry3d& T_body_cl,
+                         double ok_bound_m, double ok_bound_deg)
+    : params_(params),
+      R_body_cl_(T_body_cl.linear()),
+      ok_bound_m_(ok_bound_m),
+      ok_bound_deg_(ok_bound_deg) {}
+
+void PoseTracker::reset() {
+  have_track_ = false;
+  have_candidate_ = false;
+  history_size_ = 0;
+  history_next_ = 0;
+  velocity_w_.setZero();
+  out_ = TrackedPose{};
+}
+
+Eigen::Matrix3d PoseTracker::R_world_cl(const Eigen::Quaterniond& q_world_body,
+                                        bool attitude_valid) const {
+  if (!attitude_valid) return last_R_world_cl_;
+  return q_world_body.normalized().toRotationMatrix() * R_body_cl_;
+}
+
+PoseTracker::WorldPose PoseTracker::to_world(const PoseMeasurement& m,
+                                             const Eigen::Matrix3d& R_world_cl,
+                                             std::chrono::nanoseconds at) const {
+  WorldPose w;
+  w.p_w = R_world_cl * m.T_cl_marker.translation();
+  w.R_world_marker = R_world_cl * m.T_cl_marker.linear();
+  w.bound_m = m.bound_m;
+  w.bound_deg = m.bound_deg;
+  w.at = at;
+  return w;
+}
+
+PoseTracker::WorldPose PoseTracker::predicted(std::chrono::nanoseconds at,
+                                              bool attitude_valid) const {
+  WorldPose p = track_;
+  const double dt_s = std::max(0.0, seconds(at - track_.at));
+  // The camera's turn is the attitude sensor's to carry, within its drift; without it, the
+  // marker may have turned in the camera as fast as the vehicle turns.
+  const double turn_deg =
+      (attitude_valid ? params_.attitude_drift_dps : params_.turn_rate_dps) * dt_s;
+  p.p_w += velocity_w_ * dt_s;
+  p.bound_m += velocity_bound_mps_ * dt_s + 0.5 * params_.accel_mps2 * dt_s * dt_s +
+               p.p_w.norm() * turn_deg / kDegPerRad;
+  p.bound_deg += turn_deg;
+  p.at = at;
+  return p;
+}
+
+bool PoseTracker::agree(const WorldPose& a, const WorldPose& b) const {
+  // Two independent errors within their 99 % bounds differ by about the root of their squares.
+  return (a.p_w - b.p_w).norm() <= std::hypot(a.bound_m, b.bound_m) &&
+         angle_deg(a.R_world_marker, b.R_world_marker) <= std::hypot(a.bound_deg, b.bound_deg);
+}
+
+void PoseTracker::fuse(const WorldPose& prediction, const WorldPose& m) {
+  // Inverse-variance weights, the bounds taken as the same multiple of each error's sigma.
+  const double wp_m = 1.0 / std::max(1e-12, prediction.bound_m * prediction.bound_m);
+  const double wm_m = 1.0 / std::max(1e-12, m.bound_m * m.bound_m);
+  const double wp_deg = 1.0 / std::max(1e-12, prediction.bound_deg * prediction.bound_deg);
+  const double wm_deg = 1.0 / std::max(1e-12, m.bound_deg * m.bound_deg);
+  track_.p_w = (wp_m * prediction.p_w + wm_m * m.p_w) / (wp_m + wm_m);
+  const Eigen::Quaterniond qp(prediction.R_world_marker);
+  const Eigen::Quaterniond qm(m.R_world_marker);
+  track_.R_world_marker = qp.slerp(wm_deg / (wp_deg + wm_deg), qm).toRotationMatrix();
+  track_.bound_m = std::max({params_.floor_mm / 1000.0, params_.fused_bound_share * m.bound_m,
+                             1.0 / std::sqrt(wp_m + wm_m)});
+  track_.bound_deg = std::max({params_.floor_deg, params_.fused_bound_share * m.bound_deg,
+                               1.0 / std::sqrt(wp_deg + wm_deg)});
+  track_.at = m.at;
+  sound_at_ = m.at;
+  remember(track_);
+}
+
+void PoseTracker::remember(const WorldPose& pose) {
+  history_[history_next_] = Sample{pose.at, pose.p_w};
+  history_next_ = (history_next_ + 1) % kHistory;
+  history_size_ = std::min(history_size_ + 1, kHistory);
+  estimate_velocity();
+}
+
+bool PoseTracker::aid(const WorldPose& prediction, const PoseMeasurement& m,
+                      const Eigen::Matrix3d& R_world_cl, std::chrono::nanoseconds capture) {
+  if (params_.partial_point_mm <= 0.0 || m.points <= 0 || m.points > PoseMeasurement::kMaxPoints ||
+      !m.T_cl_marker.matrix().allFinite()) {
+    return false;
+  }
+  // The least-squares translation with the rotation fixed: the mean of the points' offsets. Its
+  // bound: the points' own, plus the rotation's bound swinging them about the marker's origin.
+  const Eigen::Matrix3d R_cl_marker = R_world_cl.transpose() * prediction.R_world_marker;
+  Eigen::Vector3d t = Eigen::Vector3d::Zero();
+  double lever_m = 0.0;
+  for (int i = 0; i < m.points; ++i) {
+    const Eigen::Vector3d& c = m.points_marker_m[i];
+    t += m.T_cl_marker * c - R_cl_marker * c;
+    lever_m = std::max(lever_m, c.norm());
+  }
+  WorldPose aided = prediction;
+  aided.p_w = R_world_cl * (t / static_cast<double>(m.points));
+  aided.bound_m = params_.partial_point_mm / 1000.0 + lever_m * prediction.bound_deg / kDegPerRad;
+  const double innovation_m = (aided.p_w - prediction.p_w).norm();
+  if (innovation_m > std::hypot(aided.bound_m, prediction.bound_m)) return false;
+  // An unrefined fit's depth is loose (a pixel of disparity is centimetres at a metre): a partial
+  // view that moved the spheres away from the prediction is trusted no closer than it moved them.
+  aided.bound_m = std::max(aided.bound_m, innovation_m);
+  const double wp = 1.0 / std::max(1e-12, prediction.bound_m * prediction.bound_m);
+  const double wm = 1.0 / std::max(1e-12, aided.bound_m * aided.bound_m);
+  track_.p_w = (wp * prediction.p_w + wm * aided.p_w) / (wp + wm);
+  track_.bound_m = std::max({params_.floor_mm / 1000.0, params_.fused_bound_share * aided.bound_m,
+                             1.0 / std::sqrt(wp + wm)});
+  // The rotation is the prediction's, its bound grown from the last sound estimate on.
+  track_.R_world_marker = prediction.R_world_marker;
+  track_.bound_deg = prediction.bound_deg;
+  track_.at = capture;
+  remember(track_);
+  return true;
+}
+
+void PoseTracker::estimate_velocity() {
+  // The least-squares slope of the fused positions within the window before the newest; its
+  // bound from the positions' bound over the spread of their times, plus what the velocity can
+  // have changed within the window.
+  const std::chrono::nanoseconds newest = track_.at;
+  double n = 0.0, t_sum = 0.0;
+  Eigen::Vector3d p_sum = Eigen::Vector3d::Zero();
+  for (int i = 0; i < history_size_; ++i) {
+    const Sample& s = history_[i];
+    const double age_s = seconds(newest - s.at);
+    if (age_s < 0.0 || age_s > params_.velocity_window_s) continue;
+    n += 1.0;
+    t_sum -= age_s;
+    p_sum += s.p_w;
+  }
+  velocity_w_.setZero();
+  velocity_bound_mps_ = params_.speed_mps;
+  if (n < 2.0) return;
+  const double t_mean = t_sum / n;
+  const Eigen::Vector3d p_mean = p_sum / n;
+  double sxx = 0.0, span_s = 0.0;
+  Eigen::Vector3d sxy = Eigen::Vector3d::Zero();
+  for (int i = 0; i < history_size_; ++i) {
+    const Sample& s = history_[i];
+    const double age_s = seconds(newest - s.at);
+    if (age_s < 0.0 || age_s > params_.velocity_window_s) continue;
+    const double dt = -age_s - t_mean;
+    sxx += dt * dt;
+    sxy += dt * (s.p_w - p_mean);
+    span_s = std::max(span_s, age_s);
+  }
+  if (sxx <= 0.0) return;
+  velocity_w_ = sxy / sxx;
+  const double bound = track_.bound_m / std::sqrt(sxx) + 0.5 * params_.accel_mps2 * span_s;
+  velocity_bound_mps_ = std::min(params_.speed_mps, bound);
+  if (velocity_w_.norm() > params_.speed_mps) velocity_w_ *= params_.speed_mps / velocity_w_.norm();
+}
+
+void PoseTracker::start(const WorldPose& first, const WorldPose& second) {
+  history_size_ = 0;
+  history_next_ = 0;
+  velocity_w_.setZero();
+  velocity_bound_mps_ = params_.speed_mps;
+  track_ = first;
+  history_[history_next_++] = Sample{first.at, first.p_w};
+  history_size_ = 1;
+  have_track_ = true;
+  fuse(predicted(second.at, true), second);
+}
+
+TrackedPose PoseTracker::output(const WorldPose& pose, const Eigen::Matrix3d& R_world_cl,
+                                TrackSource source, std::chrono::nanoseconds capture) const {
+  TrackedPose out;
+  out.source = source;
+  out.T_cl_marker.linear() = R_world_cl.transpose() * pose.R_world_marker;
+  out.T_cl_marker.translation() = R_world_cl.transpose() * pose.p_w;
+  out.bound_m = pose.bound_m;
+  out.bound_deg = pose.bound_deg;
+  out.age = capture - sound_at_;
+  out.ok = source != TrackSource::none && seconds(out.age) <= params_.max_coast_s &&
+           out.bound_m <= ok_bound_m_ && out.bound_deg <= ok_bound_deg_;
+  return out;
+}
+
+TrackedPose PoseTracker::predict(std::chrono::nanoseconds capture,
+                                 const Eigen::Quaterniond& q_world_body,
+                                 bool attitude_valid) const {
+  if (!have_track_) return TrackedPose{};
+  return output(predicted(capture, attitude_valid), R_world_cl(q_world_body, attitude_valid),
+                TrackSource::coasting, capture);
+}
+
+const TrackedPose& PoseTracker::update(std::chrono::nanoseconds capture,
+                                       const Eigen::Quaterniond& q_world_body, bool attitude_valid,
+                                       const PoseMeasurement& measurement) {
+  const Eigen::Matrix3d R = R_world_cl(q_world_body, attitude_valid);
+  if (attitude_valid) last_R_world_cl_ = R;
+  // A track not fused for longer than it may coast has nothing left to gate with.
+  if (have_track_ && seconds(capture - sound_at_) > params_.max_coast_s) have_track_ = false;
+  if (have_candidate_ && seconds(capture - candidate_.at) > params_.max_coast_s) {
+    have_candidate_ = false;
+  }
+  bool rejected = false;
+  TrackSource source = have_track_ ? TrackSource::coasting : TrackSource::none;
+  const bool sound = measurement.sound && measurement.T_cl_marker.matrix().allFinite() &&
+                     std::isfinite(measurement.bound_m) && std::isfinite(measurement.bound_deg);
+  if (sound) {
+    const WorldPose m = to_world(measurement, R, capture);
+    WorldPose candidate = candidate_;
+    if (have_candidate_) {
+      // The candidate may have moved as far as the vehicle can since (it has no velocity).
+      const double dt_s = std::max(0.0, seconds(capture - candidate_.at));
+      candidate.bound_m += params_.speed_mps * dt_s;
+      candidate.bound_deg += params_.attitude_drift_dps * dt_s;
+    }
+    if (have_track_ && agree(predicted(capture, attitude_valid), m)) {
+      fuse(predicted(capture, attitude_valid), m);
+      have_candidate_ = false;
+      source = TrackSource::fused;
+    } else if (have_candidate_ && agree(candidate, m)) {
+      start(candidate_, m);  // two in a row agree: the new track replaces any old one
+      have_candidate_ = false;
+      source = TrackSource::fused;
+    } else {
+      rejected = have_track_;
+      candidate_ = m;
+      have_candidate_ = true;
+    }
+  } else if (have_track_ && aid(predicted(capture, attitude_valid), measurement, R, capture)) {
+    source = TrackSource::aided;
+  }
+  const bool fused = source == TrackSource::fused || source == TrackSource::aided;
+  out_ = have_track_
+             ? output(fused ? track_ : predicted(capture, attitude_valid), R, source, capture)
+             : TrackedPose{};
+  out_.rejected = rejected;
+  return out_;
+}
+
+}  // namespace rovctl::control
