@@ -7,14 +7,12 @@
 #include <cmath>
 #include <filesystem>
 #include <map>
-#include <opencv2/imgcodecs.hpp>
 #include <stdexcept>
 
 #include "app/tools/validation_set.hpp"
 #include "drivers/replay/recording_format.hpp"
 #include "estimator/pose_confirmation.hpp"
 #include "estimator/pose_estimator.hpp"
-#include "hal/primitives/image_header.hpp"
 
 namespace rovctl::app {
 namespace {
@@ -95,32 +93,6 @@ RenderedSequence load_sequence(const std::string& folder, const std::string& nam
   return seq;
 }
 
-cv::Mat read_png(const std::string& path, const hal::CameraModel& camera) {
-  const std::string problem =
-      hal::check_image_file(path, camera.width_px, camera.height_px, "the calibration");
-  if (!problem.empty()) throw std::invalid_argument(problem);
-  cv::Mat image = cv::imread(path, cv::IMREAD_COLOR);
-  if (image.empty()) fail(path, "cannot read image");
-  return image;
-}
-
-// FNV-1a of the name, then the seed's bytes (as the validation set seeds a pair).
-std::uint64_t seed_of(const std::string& name, std::uint64_t seed) {
-  std::uint64_t h = 14695981039346656037ull;
-  const auto mix = [&h](unsigned char c) {
-    h ^= c;
-    h *= 1099511628211ull;
-  };
-  for (const unsigned char c : name) mix(c);
-  for (int byte = 0; byte < 8; ++byte) mix(static_cast<unsigned char>(seed >> (8 * byte)));
-  return h;
-}
-
-void errors(const Eigen::Isometry3d& T, const Eigen::Isometry3d& truth, double& mm, double& deg) {
-  mm = (T.translation() - truth.translation()).norm() * 1000.0;
-  deg = std::abs(Eigen::AngleAxisd(T.linear().transpose() * truth.linear()).angle()) * 180.0 / M_PI;
-}
-
 bool right(double mm, double deg) { return mm <= kRightTranslationMm && deg <= kRightRotationDeg; }
 
 SequenceScoreRow& row_of(std::vector<SequenceScoreRow>& rows, const std::string& label) {
@@ -135,13 +107,13 @@ void score_one(const hal::StereoRig& rig, const hal::MarkerModel& marker,
                const estimator::EstimatorParams& params,
                const control::PoseTrackerParams& tracker_params, const RenderedSequence& seq,
                int updates_per_frame, std::uint64_t seed, std::vector<FrameScore>& out) {
-  estimator::PoseEstimator estimator(rig, marker, params, seed_of(seq.name, seed));
+  estimator::PoseEstimator estimator(rig, marker, params, estimator_seed(seq.name, seed));
   estimator::PoseConfirmation confirmation(params.confirm);
   control::PoseTracker tracker(tracker_params, Eigen::Isometry3d::Identity(),
                                params.ok_bound_mm / 1000.0, params.ok_bound_deg);
   for (const SequenceFrame& f : seq.frames) {
-    const cv::Mat left = read_png(f.left_png, rig.left);
-    const cv::Mat right_image = read_png(f.right_png, rig.right);
+    const cv::Mat left = read_set_image(f.left_png, rig.left);
+    const cv::Mat right_image = read_set_image(f.right_png, rig.right);
     estimator::PoseEstimate e;
     for (int u = 0; u < updates_per_frame; ++u) {
       e = estimator.update(left, right_image);
@@ -167,8 +139,8 @@ void score_one(const hal::StereoRig& rig, const hal::MarkerModel& marker,
     FrameScore s;
     s.sequence = &seq;
     s.frame = &f;
-    errors(e.T_cl_marker, f.T_cl_marker, s.still_mm, s.still_deg);
-    errors(t.T_cl_marker, f.T_cl_marker, s.tracked_mm, s.tracked_deg);
+    pose_errors(e.T_cl_marker, f.T_cl_marker, s.still_mm, s.still_deg);
+    pose_errors(t.T_cl_marker, f.T_cl_marker, s.tracked_mm, s.tracked_deg);
     s.still_ok = e.ok;
     s.still_bound_mm = e.error_bound_m * 1000.0;
     s.still_bound_deg = e.error_bound_deg;

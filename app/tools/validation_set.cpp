@@ -33,20 +33,6 @@ std::map<std::string, double> visible(const YAML::Node& node) {
   return out;
 }
 
-double angle_deg(const Eigen::Matrix3d& a, const Eigen::Matrix3d& b) {
-  return Eigen::AngleAxisd(a.transpose() * b).angle() * 180.0 / M_PI;
-}
-
-cv::Mat read_png(const std::string& path, const hal::CameraModel& camera) {
-  // The size from the header, before decoding: a small file can declare a huge image.
-  const std::string problem =
-      hal::check_image_file(path, camera.width_px, camera.height_px, "the calibration");
-  if (!problem.empty()) throw std::invalid_argument(problem);
-  cv::Mat image = cv::imread(path, cv::IMREAD_COLOR);
-  if (image.empty()) throw std::invalid_argument(path + ": cannot read image");
-  return image;
-}
-
 ConditionScore summarise(const std::string& condition, const std::vector<PairResult>& results,
                          const std::vector<double>& ms) {
   ConditionScore s;
@@ -102,19 +88,6 @@ ConditionScore summarise(const std::string& condition, const std::vector<PairRes
   return s;
 }
 
-// FNV-1a of the name, then the seed's bytes: fixed across platforms and standard libraries,
-// unlike std::hash.
-std::uint64_t seed_of(const std::string& name, std::uint64_t seed) {
-  std::uint64_t h = 14695981039346656037ull;
-  const auto mix = [&h](unsigned char c) {
-    h ^= c;
-    h *= 1099511628211ull;
-  };
-  for (const unsigned char c : name) mix(c);
-  for (int byte = 0; byte < 8; ++byte) mix(static_cast<unsigned char>(seed >> (8 * byte)));
-  return h;
-}
-
 // The conditions as the set first names them: the order of every table the tool prints.
 std::vector<std::string> conditions_in_set_order(const std::vector<PairResult>& results) {
   std::vector<std::string> order;
@@ -157,6 +130,34 @@ std::vector<FieldBandScore> score_by_band(
 }
 
 }  // namespace
+
+cv::Mat read_set_image(const std::string& path, const hal::CameraModel& camera) {
+  // The size from the header, before decoding: a small file can declare a huge image.
+  const std::string problem =
+      hal::check_image_file(path, camera.width_px, camera.height_px, "the calibration");
+  if (!problem.empty()) throw std::invalid_argument(problem);
+  cv::Mat image = cv::imread(path, cv::IMREAD_COLOR);
+  if (image.empty()) throw std::invalid_argument(path + ": cannot read image");
+  return image;
+}
+
+std::uint64_t estimator_seed(const std::string& name, std::uint64_t seed) {
+  // FNV-1a: fixed across platforms and standard libraries, unlike std::hash.
+  std::uint64_t h = 14695981039346656037ull;
+  const auto mix = [&h](unsigned char c) {
+    h ^= c;
+    h *= 1099511628211ull;
+  };
+  for (const unsigned char c : name) mix(c);
+  for (int byte = 0; byte < 8; ++byte) mix(static_cast<unsigned char>(seed >> (8 * byte)));
+  return h;
+}
+
+void pose_errors(const Eigen::Isometry3d& T, const Eigen::Isometry3d& truth, double& mm,
+                 double& deg) {
+  mm = (T.translation() - truth.translation()).norm() * 1000.0;
+  deg = Eigen::AngleAxisd(T.linear().transpose() * truth.linear()).angle() * 180.0 / M_PI;
+}
 
 std::vector<ValidationPair> load_validation_set(const std::string& dir) {
   const std::string file = (fs::path(dir) / "manifest.json").string();
@@ -216,9 +217,9 @@ std::vector<ConditionScore> score_validation_set(const hal::StereoRig& rig,
   std::vector<double> all_ms;
   for (std::size_t i = 0; i < pairs.size(); ++i) {
     const ValidationPair& pair = pairs[i];
-    const cv::Mat left = read_png(pair.left_png, rig.left);
-    const cv::Mat right = read_png(pair.right_png, rig.right);
-    estimator::PoseEstimator estimator(rig, marker, params, seed_of(pair.name, seed));
+    const cv::Mat left = read_set_image(pair.left_png, rig.left);
+    const cv::Mat right = read_set_image(pair.right_png, rig.right);
+    estimator::PoseEstimator estimator(rig, marker, params, estimator_seed(pair.name, seed));
     estimator::PoseEstimate e;
     for (int f = 0; f < frames; ++f) {
       e = estimator.update(left, right);
@@ -245,9 +246,7 @@ std::vector<ConditionScore> score_validation_set(const hal::StereoRig& rig,
     r.rim_support = e.rim_support;
     r.error_bound_mm = 1000.0 * e.error_bound_m;
     r.error_bound_deg = e.error_bound_deg;
-    r.translation_mm =
-        (e.T_cl_marker.translation() - pair.T_cl_marker.translation()).norm() * 1000.0;
-    r.rotation_deg = angle_deg(e.T_cl_marker.linear(), pair.T_cl_marker.linear());
+    pose_errors(e.T_cl_marker, pair.T_cl_marker, r.translation_mm, r.rotation_deg);
     by_condition[pair.condition].push_back(r);
     all.push_back(r);
     if (details != nullptr) details->push_back(r);

@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <limits>
 #include <map>
+#include <opencv2/core/mat.hpp>
 #include <string>
 #include <vector>
 
@@ -32,6 +33,18 @@ struct ValidationPair {
 
 // Reads DIR/manifest.json. Throws std::invalid_argument naming the file and the entry.
 std::vector<ValidationPair> load_validation_set(const std::string& dir);
+
+// An image of a set, its size checked against the calibration's from the file's header before it
+// is decoded. Throws std::invalid_argument naming the file.
+cv::Mat read_set_image(const std::string& path, const hal::CameraModel& camera);
+
+// The estimator's seed for the pair or sequence `name` under the run's `seed`: the same on every
+// platform, so a pair scores the same wherever it runs.
+std::uint64_t estimator_seed(const std::string& name, std::uint64_t seed);
+
+// An estimate's error against the truth: position in mm, rotation in deg.
+void pose_errors(const Eigen::Isometry3d& T, const Eigen::Isometry3d& truth, double& mm,
+                 double& deg);
 
 // Right means within these of the truth (the bounds).
 constexpr double kRightTranslationMm = 10.0;
