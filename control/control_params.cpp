@@ -153,6 +153,10 @@ void describe(hal::ParamVisitor& v, ControlParams& p) {
 }
 
 void describe(hal::ParamVisitor& v, PoseTrackerParams& p) {
+  v.param("enabled", p.enabled,
+          "the mission acts on the pose tracked across frames; false: on each frame's estimate "
+          "(off by default: a camera shaking on its mount, unseen by the attitude sensor, defeats "
+          "the track)");
   v.param(
       "max_coast_s", p.max_coast_s,
       {"s", 0.0, 10.0, "the tracked pose is ok at most this long after the last fused estimate"});
@@ -166,6 +170,11 @@ void describe(hal::ParamVisitor& v, PoseTrackerParams& p) {
   v.param("attitude_drift_dps", p.attitude_drift_dps,
           {"deg/s", 0.0, 90.0,
            "the attitude sensor's error growth: a coast's rotation bound grows at this rate"});
+  v.param(
+      "attitude_filter_s", p.attitude_filter_s,
+      {"s", 0.0, 60.0,
+       "the body rates carry the attitude between reads, pulled toward the attitude sensor's "
+       "with this time constant (its read-to-read noise moves the marker at range); 0: as read"});
   v.param("turn_rate_dps", p.turn_rate_dps,
           {"deg/s", 0.0, 720.0,
            "the fastest the vehicle turns: the rotation bound's growth without a valid attitude"});

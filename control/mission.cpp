@@ -205,7 +205,8 @@ MissionOutput Mission::update(const MissionInput& in) {
 
 Mission::Sight Mission::observe(const MissionInput& in) {
   Sight s{in};
-  s.seen = in.recognised && in.fitness >= p_.min_fitness && in.T_cl_marker.matrix().allFinite();
+  s.seen = (in.tracked || (in.recognised && in.fitness >= p_.min_fitness)) &&
+           in.T_cl_marker.matrix().allFinite();
   if (s.seen) {
     ++seen_frames_;
     unseen_frames_ = 0;

@@ -39,6 +39,9 @@ struct MissionInput {
   // the blind zone at the end of the push a partial view is all there is).
   bool full_view = false;
   double fitness = 0.0;  // the estimate's fitness (also gated by min_fitness)
+  // T_cl_marker is the pose tracked across frames (PoseTracker), within the estimator's ok limits
+  // by its own bound: a full view, seen whatever this frame's estimate and fitness.
+  bool tracked = false;
   // On a partial view: T_cl_marker's rotation is the attitude sensor's since the last full view
   // (AttitudeAidedPose), so DOCK may steer on it while its push waits.
   bool attitude_aided = false;

@@ -13,6 +13,11 @@ namespace rovctl::control {
 
 // Declared rates and limits of the track (the `control.tracker` config section).
 struct PoseTrackerParams {
+  // The mission acts on the tracked pose; false: on each frame's estimate alone. Off until the
+  // track carries a camera that moves on its mount unseen by the attitude sensor: in the sim's
+  // exposure scenario (a mount shaking 1.5 deg at 8 Hz) the estimates disagreed with the track
+  // so often that no trial docked.
+  bool enabled = false;
   // The tracked pose is ok at most this long after the last fused estimate.
   double max_coast_s = 1.5;
   // How fast the vehicle's velocity can change: the coast's position bound grows by half this
@@ -25,6 +30,9 @@ struct PoseTrackerParams {
   // The attitude sensor's error growth between two frames: the coast's rotation bound grows at
   // this rate (the station does not turn, so the camera's own turn carries the marker's).
   double attitude_drift_dps = 0.1;
+  // The attitude the track is carried by: the body rates between reads, pulled toward the
+  // attitude sensor's with this time constant (AttitudeFilter). 0: the sensor's as read.
+  double attitude_filter_s = 2.0;
   // The fastest the vehicle turns: the rotation bound's growth without a valid attitude.
   double turn_rate_dps = 60.0;
   // The fused bound never goes below these, however many estimates agree.

@@ -9,6 +9,7 @@
 #include <stdexcept>
 
 #include "app/runtime/realtime_setup.hpp"
+#include "control/pose_tracker.hpp"
 #include "estimator/pose_estimator.hpp"
 
 namespace rovctl::app {
@@ -81,7 +82,10 @@ const char* telemetry_csv_header() noexcept {
          "dock_lateral_m,dock_axial_m,dock_yaw_rad,"
          "fx_n,fy_n,fz_n,mx_nm,my_nm,mz_nm,"
          "thruster_count,cmd0,cmd1,cmd2,cmd3,cmd4,cmd5,cmd6,cmd7,"
-         "bus_status,flags,push_est_x_n,push_est_y_n,push_truth_x_n,push_truth_y_n";
+         "bus_status,flags,push_est_x_n,push_est_y_n,push_truth_x_n,push_truth_y_n,"
+         "track_source,track_bound_m,track_bound_deg,"
+         "track_x_m,track_y_m,track_z_m,track_qw,track_qx,track_qy,track_qz,"
+         "track_error_m,track_error_rad";
 }
 
 std::size_t format_telemetry_csv_row(const TelemetryRecord& r, char* buf,
@@ -121,6 +125,13 @@ std::size_t format_telemetry_csv_row(const TelemetryRecord& r, char* buf,
   row.u64(r.flags);
   for (const double v : r.push_est_n) row.f(v);
   for (const double v : r.push_truth_n) row.f(v);
+  row.put("%s", control::to_string(static_cast<control::TrackSource>(r.track_source)));
+  row.f(r.track_bound_m);
+  row.f(r.track_bound_deg);
+  for (const double v : r.track_t_m) row.f(v);
+  for (const double v : r.track_q_wxyz) row.f(v);
+  row.f(r.track_error_m);
+  row.f(r.track_error_rad);
   return row.length();
 }
 

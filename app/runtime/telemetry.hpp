@@ -43,6 +43,9 @@ constexpr std::uint32_t dock_errors_valid = 1u << 8;  // dock_* hold the mission
 constexpr std::uint32_t full_view = 1u << 9;       // the estimate is ok: every sphere in both views
 constexpr std::uint32_t operator_hold = 1u << 10;  // the operator aborted: neutral until START
 constexpr std::uint32_t current_settled = 1u << 11;  // the servo's estimate of the current settled
+// The pose tracker is on: the mission acts on track_*, not est_*.
+constexpr std::uint32_t tracking = 1u << 12;
+constexpr std::uint32_t track_ok = 1u << 13;  // the tracked pose is ok (bounds within the limits)
 }  // namespace telemetry_flag
 
 // One tick. Poses are T_cl_marker (marker in the left camera frame): translation in m, unit
@@ -90,6 +93,16 @@ struct TelemetryRecord {
   // integral term), and in the sim the truth (the current's drag on a vehicle at rest).
   std::array<double, 2> push_est_n{kNaN, kNaN};
   std::array<double, 2> push_truth_n{kNaN, kNaN};
+  // The pose tracked across frames (control::PoseTracker): where it came from this tick
+  // (control::TrackSource as int, written as its token), its bounds and pose (NaN with no track),
+  // and in the sim its error against the truth at the frame's capture.
+  std::int32_t track_source = 0;
+  double track_bound_m = kNaN;
+  double track_bound_deg = kNaN;
+  std::array<double, 3> track_t_m{kNaN, kNaN, kNaN};
+  std::array<double, 4> track_q_wxyz{kNaN, kNaN, kNaN, kNaN};
+  double track_error_m = kNaN;
+  double track_error_rad = kNaN;
 };
 static_assert(std::is_trivially_copyable_v<TelemetryRecord>);
 static_assert(std::is_standard_layout_v<TelemetryRecord>);

@@ -8,12 +8,15 @@
 #include <cstdio>
 #include <limits>
 
+#include "app/runtime/pose_measurement.hpp"
 #include "hal/model/docking_station.hpp"
 
 namespace rovctl::app {
 namespace {
 
 constexpr std::chrono::seconds kSettleAfterEnd{1};
+// The body rates carry the attitude across a few missed reads, not across a sensor outage.
+constexpr std::chrono::milliseconds kAttitudeMaxGap{250};
 
 bool finite_pose(const Eigen::Isometry3d& T) { return T.matrix().allFinite(); }
 
@@ -79,6 +82,9 @@ VehicleLoop::VehicleLoop(const AppConfig& config, const hal::StereoRig& rig,
       aided_pose_(config.vehicle.T_body_cl(),
                   std::chrono::duration_cast<std::chrono::nanoseconds>(
                       std::chrono::duration<double>(config.mission.partial_view_attitude_s))),
+      attitude_filter_(config.control.tracker.attitude_filter_s, kAttitudeMaxGap),
+      tracker_(config.control.tracker, config.vehicle.T_body_cl(),
+               config.estimator.ok_bound_mm / 1000.0, config.estimator.ok_bound_deg),
       frame_monitor_(config.control.failsafe.dead_range_levels) {
   // Start-up allocations: the frame buffers at the calibrated size, the neutral command.
   frame_.left_bgr.create(rig.left.height_px, rig.left.width_px, CV_8UC3);
@@ -145,9 +151,11 @@ bool VehicleLoop::tick(const TickInfo& info) {
   ++ticks_;
   TickState t(info);
   capture(t);
+  const auto compute_start = std::chrono::steady_clock::now();
   segment(t);
   estimate(t);
   control(t);
+  compute_time_ = std::chrono::steady_clock::now() - compute_start;
   actuate(t);
   telemetry(t);
   return keep_running(t.now);
@@ -287,14 +295,34 @@ void VehicleLoop::mission_input(TickState& t) {
   in.T_cl_marker = estimate_.T_cl_marker;
   t.attitude = t.have_readings && readings_.attitude_valid &&
                readings_.q_world_body.coeffs().allFinite() && readings_.q_world_body.norm() > 0.5;
+  track(t);
   aid_partial_view(t);
   in.contact = t.have_readings && readings_.dock_contact_valid && readings_.dock_contact;
+}
+
+void VehicleLoop::track(TickState& t) {
+  if (!config_.control.tracker.enabled) return;
+  const bool attitude = attitude_filter_.update(t.now, t.attitude, readings_.q_world_body,
+                                                readings_.omega_body_radps);
+  // Without a frame there is nothing to fuse: the track is predicted to now, unchanged.
+  const std::chrono::nanoseconds at = t.have_images ? frame_.left_stamp : t.now;
+  const Eigen::Quaterniond q =
+      attitude ? attitude_filter_.q_world_body_at(at) : Eigen::Quaterniond::Identity();
+  tracked_ = t.have_images ? tracker_.update(at, q, attitude,
+                                             pose_measurement(estimate_, config_.marker,
+                                                              config_.estimator.sphere_support))
+                           : tracker_.predict(at, q, attitude);
+  // A frame's ok estimate the track has not taken (its first, or one that disagrees) is no full
+  // view yet: the next frame confirms one or the other.
+  t.in.tracked = tracked_.ok;
+  t.in.full_view = tracked_.ok;
+  if (tracked_.ok) t.in.T_cl_marker = tracked_.T_cl_marker;
 }
 
 void VehicleLoop::aid_partial_view(TickState& t) {
   if (!t.attitude) return;
   if (t.in.full_view) {
-    aided_pose_.remember(t.now, readings_.q_world_body, estimate_.T_cl_marker);
+    aided_pose_.remember(t.now, readings_.q_world_body, t.in.T_cl_marker);
     return;
   }
   if (!t.seen) return;
@@ -510,6 +538,16 @@ void VehicleLoop::fill_record(const TickState& t, TelemetryRecord& rec) const {
     flags |= telemetry_flag::estimate_valid;
   }
   if (t.seen) flags |= telemetry_flag::recognised;
+  if (config_.control.tracker.enabled) {
+    flags |= telemetry_flag::tracking;
+    if (tracked_.ok) flags |= telemetry_flag::track_ok;
+    rec.track_source = static_cast<std::int32_t>(tracked_.source);
+    if (tracked_.source != control::TrackSource::none) {
+      rec.track_bound_m = tracked_.bound_m;
+      rec.track_bound_deg = tracked_.bound_deg;
+      put_pose(tracked_.T_cl_marker, rec.track_t_m, rec.track_q_wxyz);
+    }
+  }
   if (t.out.errors_valid) {
     rec.dock_lateral_error_m = t.out.lateral_error_m;
     rec.dock_axial_error_m = t.out.axial_error_m;

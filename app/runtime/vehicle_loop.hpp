@@ -16,11 +16,13 @@
 #include "app/runtime/operator_link.hpp"
 #include "app/runtime/telemetry.hpp"
 #include "control/attitude_aided_pose.hpp"
+#include "control/attitude_filter.hpp"
 #include "control/attitude_stabilizer.hpp"
 #include "control/control_allocation_pseudo_inverse.hpp"
 #include "control/failsafe.hpp"
 #include "control/mission.hpp"
 #include "control/pd_visual_servo.hpp"
+#include "control/pose_tracker.hpp"
 #include "control/thruster_health.hpp"
 #include "drivers/mavlink/gcs_status.hpp"
 #include "estimator/pose_confirmation.hpp"
@@ -92,10 +94,15 @@ class VehicleLoop {
   const control::Mission& mission() const { return mission_; }
   const control::Failsafe& failsafe() const { return failsafe_; }
   const estimator::PoseEstimate& last_estimate() const { return estimate_; }
+  // The pose tracked across frames this tick (source none while the tracker is off).
+  const control::TrackedPose& tracked_pose() const { return tracked_; }
   const hal::ThrusterCommand& last_command() const { return command_; }
   const control::ThrusterHealth& thruster_health() const { return health_; }
   const control::ControlAllocator& allocator() const { return allocator_; }
   std::uint64_t ticks() const { return ticks_; }
+  // The last tick's processor time for its frame: segment, estimate and control (capture waits
+  // on the camera, actuate on the bus), by the steady clock.
+  std::chrono::nanoseconds last_compute_time() const { return compute_time_; }
   std::uint64_t recognised_ticks() const { return recognised_ticks_; }
   std::uint64_t grab_failures() const { return grab_failures_; }
   std::uint64_t dropped_events() const { return dropped_events_; }
@@ -133,6 +140,8 @@ class VehicleLoop {
 
   // The control stage's parts.
   void mission_input(TickState& t);
+  // The frame's estimate into the tracker; an ok track becomes the mission's pose.
+  void track(TickState& t);
   void aid_partial_view(TickState& t);
   void take_operator_commands(std::chrono::nanoseconds now);
   void servo_wrench(TickState& t);
@@ -171,12 +180,15 @@ class VehicleLoop {
   control::Mission mission_;
   control::Failsafe failsafe_;
   control::AttitudeAidedPose aided_pose_;
+  control::AttitudeFilter attitude_filter_;  // the attitude the tracker carries the pose by
+  control::PoseTracker tracker_;
   FrameMonitor frame_monitor_;
   SpscRing<LoopEvent> events_{256};
 
   hal::StereoFrame frame_;
   hal::SensorReadings readings_;
   estimator::PoseEstimate estimate_;
+  control::TrackedPose tracked_;
   hal::ThrusterCommand command_;
   hal::ThrusterCommand neutral_;
   hal::BusStatus bus_status_ = hal::BusStatus::ok;       // the last write's (or arm's)
@@ -194,6 +206,7 @@ class VehicleLoop {
   std::atomic<bool> undock_requested_{false};
   std::chrono::nanoseconds ended_at_{-1};
   std::uint64_t ticks_ = 0;
+  std::chrono::nanoseconds compute_time_{0};
   std::uint64_t recognised_ticks_ = 0;
   std::uint64_t grab_failures_ = 0;
   std::uint64_t dropped_events_ = 0;

@@ -27,14 +27,20 @@ void put_pose(const Eigen::Isometry3d& T, std::array<double, 3>& t, std::array<d
 }
 
 // The simulator's truth beside the estimate in one record; the loop itself never sees it.
+void pose_error(const Eigen::Isometry3d& truth, const std::array<double, 3>& t_m,
+                const std::array<double, 4>& q_wxyz, double& error_m, double& error_rad) {
+  const Eigen::Vector3d t(t_m[0], t_m[1], t_m[2]);
+  const Eigen::Quaterniond q(q_wxyz[0], q_wxyz[1], q_wxyz[2], q_wxyz[3]);
+  error_m = (truth.translation() - t).norm();
+  error_rad = Eigen::AngleAxisd(truth.linear().transpose() * q.toRotationMatrix()).angle();
+}
+
 void score_against_truth(const Eigen::Isometry3d& truth, TelemetryRecord& r) {
   put_pose(truth, r.truth_t_m, r.truth_q_wxyz);
   r.flags |= telemetry_flag::truth_valid;
-  if ((r.flags & telemetry_flag::estimate_valid) == 0) return;
-  const Eigen::Vector3d t(r.est_t_m[0], r.est_t_m[1], r.est_t_m[2]);
-  const Eigen::Quaterniond q(r.est_q_wxyz[0], r.est_q_wxyz[1], r.est_q_wxyz[2], r.est_q_wxyz[3]);
-  r.est_error_m = (truth.translation() - t).norm();
-  r.est_error_rad = Eigen::AngleAxisd(truth.linear().transpose() * q.toRotationMatrix()).angle();
+  if ((r.flags & telemetry_flag::estimate_valid) != 0) {
+    pose_error(truth, r.est_t_m, r.est_q_wxyz, r.est_error_m, r.est_error_rad);
+  }
 }
 
 // The current's drag on the vehicle at rest (N, body x and y): what the servo's estimate of the
@@ -117,8 +123,19 @@ class TrialRecorder {
     TelemetryRecord r;
     while (vehicle_.telemetry().try_pop(r)) {
       // Drained every tick: the camera's last frame is this record's.
-      if ((r.flags & telemetry_flag::full_view) != 0 && vehicle_.backends().sim != nullptr) {
-        score_ok_tick(r);
+      // The pose the mission acted on: the tracker's when it is on, else the estimate.
+      const bool tracking = (r.flags & telemetry_flag::tracking) != 0;
+      const bool acted_ok = tracking ? (r.flags & telemetry_flag::track_ok) != 0
+                                     : (r.flags & telemetry_flag::full_view) != 0;
+      // The tracked pose is the frame's (or predicted to a tick without one): against the truth
+      // of the last capture. The estimate's columns are against the tick's truth (below).
+      if (vehicle_.backends().sim != nullptr) {
+        const Eigen::Isometry3d& at_capture =
+            vehicle_.backends().sim->camera().last_T_cl_marker_truth();
+        if (std::isfinite(r.track_t_m[0])) {
+          pose_error(at_capture, r.track_t_m, r.track_q_wxyz, r.track_error_m, r.track_error_rad);
+        }
+        if (acted_ok) score_ok_tick(r, at_capture, tracking);
       }
       const hal::mock::WorldTruth truth = world_.truth();
       score_against_truth(truth.T_cl_marker, r);
@@ -130,15 +147,23 @@ class TrialRecorder {
     }
   }
 
-  // An ok estimate against the truth of its own image: right, and within its error bound?
-  void score_ok_tick(const TelemetryRecord& r) {
-    TelemetryRecord at_capture = r;
-    score_against_truth(vehicle_.backends().sim->camera().last_T_cl_marker_truth(), at_capture);
-    const double mm = at_capture.est_error_m * 1000.0;
-    const double deg = at_capture.est_error_rad * 180.0 / M_PI;
+  // An ok pose (the tracker's or the estimate's) against the truth of its frame: right, and
+  // within its error bound?
+  void score_ok_tick(const TelemetryRecord& r, const Eigen::Isometry3d& at_capture, bool tracked) {
+    TelemetryRecord scored = r;
+    score_against_truth(at_capture, scored);
+    const double mm = (tracked ? r.track_error_m : scored.est_error_m) * 1000.0;
+    const double deg = (tracked ? r.track_error_rad : scored.est_error_rad) * 180.0 / M_PI;
+    const double bound_mm = (tracked ? r.track_bound_m : r.error_bound_m) * 1000.0;
+    const double bound_deg = tracked ? r.track_bound_deg : r.error_bound_deg;
     ++result_.ok_ticks;
+    const auto source = static_cast<control::TrackSource>(r.track_source);
+    if (tracked &&
+        (source == control::TrackSource::coasting || source == control::TrackSource::aided)) {
+      ++result_.ok_carried_ticks;
+    }
     if (mm >= kRightTranslationMm || deg >= kRightRotationDeg) ++result_.ok_wrong_ticks;
-    if (mm > r.error_bound_m * 1000.0 || deg > r.error_bound_deg) ++result_.ok_over_bound_ticks;
+    if (mm > bound_mm || deg > bound_deg) ++result_.ok_over_bound_ticks;
     result_.ok_error_mm_max = std::max(result_.ok_error_mm_max, mm);
     result_.ok_error_deg_max = std::max(result_.ok_error_deg_max, deg);
   }
@@ -348,15 +373,19 @@ TrialResult run_docking_trial(const AppConfig& config, const hal::StereoRig& rig
   TrialRecorder recorder(config, conditions, options, vehicle, vehicle_options.seed, max_ticks,
                          result);
   double estimator_ms_sum = 0.0;
+  std::vector<double> frame_cpu_ms;
+  frame_cpu_ms.reserve(max_ticks + 1);
   const SchedulerStats& stats = vehicle.run(max_ticks, [&](const TickInfo&) {
     // CPU time, not the virtual clock's stage time (which does not advance while computing).
     estimator_ms_sum +=
         std::chrono::duration<double, std::milli>(loop.last_estimate().compute_time).count();
+    frame_cpu_ms.push_back(ms(loop.last_compute_time()));
     recorder.drain();
   });
   vehicle.make_safe();
   recorder.drain();
   fill_outcome(vehicle, stats, estimator_ms_sum, recorder, result);
+  if (!frame_cpu_ms.empty()) result.frame_cpu_ms_p95 = hal::percentile(frame_cpu_ms, 0.95);
   return result;
 }
 

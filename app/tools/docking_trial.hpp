@@ -112,6 +112,10 @@ struct TrialResult {
   // or rotation): how often the bound, a 99 % quantile, fails to cover (about 1 % when it is true).
   std::uint64_t ok_over_bound_ticks = 0;
   double ok_error_mm_max = 0.0, ok_error_deg_max = 0.0;  // the worst ok tick's, against its image
+  // Ok ticks whose pose the tracker carried (coasted or aided by a partial view) through a frame
+  // whose estimate was not sound.
+  std::uint64_t ok_carried_ticks = 0;
+  double frame_cpu_ms_p95 = 0.0;  // VehicleLoop::last_compute_time() over the trial's ticks
   std::vector<std::string> events;
   std::vector<FailsafeLogEntry> failsafe_log;
   std::vector<TelemetryRecord> records;  // when keep_records

@@ -9,6 +9,7 @@
 #include <map>
 #include <stdexcept>
 
+#include "app/runtime/pose_measurement.hpp"
 #include "app/tools/validation_set.hpp"
 #include "drivers/replay/recording_format.hpp"
 #include "estimator/pose_confirmation.hpp"
@@ -120,21 +121,7 @@ void score_one(const hal::StereoRig& rig, const hal::MarkerModel& marker,
       if (e.input_error != nullptr) fail(f.left_png, e.input_error);
     }
     if (params.improved()) confirmation.judge(e, f.stamp);
-    control::PoseMeasurement m;
-    // Sound: ok by its own frame's tests; the tracker confirms it against its prediction.
-    m.sound = e.ok || e.not_ok_reason == estimator::NotOkReason::unconfirmed;
-    m.T_cl_marker = e.T_cl_marker;
-    m.bound_m = e.error_bound_m;
-    m.bound_deg = e.error_bound_deg;
-    // A partial view: the spheres it is supported by in both views, as the loop aids one.
-    for (std::size_t i = 0; !m.sound && e.recognised && i < marker.spheres.size() &&
-                            i < control::PoseMeasurement::kMaxPoints;
-         ++i) {
-      if (e.sphere_scores[0][i] >= params.sphere_support &&
-          e.sphere_scores[1][i] >= params.sphere_support) {
-        m.points_marker_m[m.points++] = marker.spheres[i].centre_marker_m;
-      }
-    }
+    const control::PoseMeasurement m = pose_measurement(e, marker, params.sphere_support);
     const control::TrackedPose& t = tracker.update(f.stamp, f.q_world_cam, true, m);
     FrameScore s;
     s.sequence = &seq;

@@ -65,7 +65,7 @@ void summarise_recharge(const std::vector<TrialResult>& results, SimSummary& s) 
 SimSummary summarise(const std::vector<TrialResult>& results) {
   SimSummary s;
   s.trials = static_cast<int>(results.size());
-  std::vector<double> times, lateral, yaw, est_err;
+  std::vector<double> times, lateral, yaw, est_err, frame_cpu;
   double estimator_ms = 0.0;
   for (const TrialResult& r : results) {
     if (r.docked) ++s.captured;
@@ -89,7 +89,11 @@ SimSummary summarise(const std::vector<TrialResult>& results) {
     if (r.ok_wrong_ticks > 0) ++s.trials_ok_wrong;
     s.ok_error_mm_max = std::max(s.ok_error_mm_max, r.ok_error_mm_max);
     s.ok_error_deg_max = std::max(s.ok_error_deg_max, r.ok_error_deg_max);
+    s.ok_carried_ticks += r.ok_carried_ticks;
+    frame_cpu.push_back(r.frame_cpu_ms_p95);
+    s.frame_cpu_ms_p95_max = std::max(s.frame_cpu_ms_p95_max, r.frame_cpu_ms_p95);
   }
+  s.frame_cpu_ms_p95_median = frame_cpu.empty() ? 0.0 : hal::percentile(frame_cpu, 0.5);
   s.success_rate = s.trials > 0 ? static_cast<double>(s.docked) / s.trials : 0.0;
   s.time_to_dock_s_median = percentile_or_none(times, 0.5);
   s.final_lateral_error_mm_p95 = percentile_or_none(lateral, 0.95);
@@ -123,7 +127,10 @@ std::string summary_json(const SimSummary& s) {
       .field("trials_ok_wrong", s.trials_ok_wrong)
       .field("ok_over_bound_ticks", static_cast<long>(s.ok_over_bound_ticks))
       .field("ok_error_mm_max", s.ok_error_mm_max)
-      .field("ok_error_deg_max", s.ok_error_deg_max);
+      .field("ok_error_deg_max", s.ok_error_deg_max)
+      .field("ok_carried_ticks", static_cast<long>(s.ok_carried_ticks))
+      .field("frame_cpu_ms_p95_median", s.frame_cpu_ms_p95_median)
+      .field("frame_cpu_ms_p95_max", s.frame_cpu_ms_p95_max);
   if (s.recharge) {
     j.begin_object("recharge")
         .field("recharged", s.recharged)
@@ -177,6 +184,12 @@ std::string summary_text(const SimSummary& s, const std::vector<TrialResult>& re
       kRightTranslationMm, kRightRotationDeg, static_cast<unsigned long long>(s.ok_wrong_ticks),
       s.trials_ok_wrong, s.ok_error_mm_max, s.ok_error_deg_max,
       static_cast<unsigned long long>(s.ok_over_bound_ticks));
+  o << line;
+  std::snprintf(line, sizeof(line),
+                "ok ticks the pose tracker carried through a frame it could not fuse %llu; frame "
+                "processor time p95 %.2f ms (median trial), %.2f ms (worst trial)\n",
+                static_cast<unsigned long long>(s.ok_carried_ticks), s.frame_cpu_ms_p95_median,
+                s.frame_cpu_ms_p95_max);
   o << line;
   if (s.recharge) {
     o << "\ntrial  result      end of charge                          seated_h  contact  "
@@ -316,7 +329,7 @@ void write_sim_outputs(const std::string& dir, const std::vector<TrialResult>& r
            "deg,"
            "sim_time_s,ticks,overruns,jitter_p99_ms,estimator_ms_mean,recognised_fraction,"
            "estimate_error_mm_median,ok_ticks,ok_wrong_ticks,ok_error_mm_max,ok_error_deg_max,"
-           "ok_over_bound_ticks";
+           "ok_over_bound_ticks,ok_carried_ticks,frame_cpu_ms_p95";
   const bool recharge = summary.recharge;
   if (recharge) {
     table << ",recharged,charged,departed,end_of_charge,seated_h,contact_fraction,"
@@ -334,7 +347,7 @@ void write_sim_outputs(const std::string& dir, const std::vector<TrialResult>& r
           << ',' << r.overruns << ',' << r.jitter_p99_ms << ',' << r.estimator_ms_mean << ','
           << r.recognised_fraction << ',' << r.estimate_error_mm_median << ',' << r.ok_ticks << ','
           << r.ok_wrong_ticks << ',' << r.ok_error_mm_max << ',' << r.ok_error_deg_max << ','
-          << r.ok_over_bound_ticks;
+          << r.ok_over_bound_ticks << ',' << r.ok_carried_ticks << ',' << r.frame_cpu_ms_p95;
     if (recharge) {
       const RechargeResult& h = r.charge;
       table << ',' << trial_recharged(r) << ',' << h.charged << ',' << h.departed << ",\""

@@ -38,6 +38,9 @@ struct SimSummary {
   std::uint64_t ok_over_bound_ticks = 0;  // ok ticks off by more than their own error bound
   int trials_ok_wrong = 0;
   double ok_error_mm_max = 0.0, ok_error_deg_max = 0.0;
+  std::uint64_t ok_carried_ticks = 0;  // ok ticks the tracker carried (TrialResult)
+  // The trials' p95 of the frame's processor time (TrialResult::frame_cpu_ms_p95): median, worst.
+  double frame_cpu_ms_p95_median = 0.0, frame_cpu_ms_p95_max = 0.0;
   // The recharging mission (mission.kind recharge); absent from the reports otherwise.
   bool recharge = false;
   int recharged = 0;  // trial_recharged(): docked, charged and departed clear, marker in view

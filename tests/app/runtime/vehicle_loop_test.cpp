@@ -188,5 +188,42 @@ TEST_F(LoopFailsafes, AnUnacknowledgedDisarmTripsHoldsNeutralAndIsRetriedUntilTa
   EXPECT_FALSE(bus.armed());
 }
 
+// With the tracker on, the camera gives no frame for 50 ms while the marker is tracked: the
+// tracker carries the pose through the gap with a bound that grows every tick, the truth of the
+// moment within it, and nothing on the tick allocates.
+TEST_F(FailingThrusters, TheTrackerCarriesThePoseThroughDroppedFramesWithAGrowingBound) {
+  config.control.tracker.enabled = true;
+  config.sim.faults.camera_drop_at_s = 2.0;
+  config.sim.faults.camera_drop_for_s = 0.05;
+  auto v = open_vehicle();
+  int carried = 0;
+  double last_bound_m = 0.0;
+  std::uint64_t allocations = 0;
+  int k = 0;
+  v->scheduler().run(
+      [&](const TickInfo& info) {
+        AllocationProbe probe;
+        const bool more = v->loop().tick(info);
+        if (k++ >= 10) allocations += probe.allocations();
+        const control::TrackedPose& p = v->loop().tracked_pose();
+        if (p.source == control::TrackSource::coasting && p.ok) {
+          ++carried;
+          EXPECT_GT(p.bound_m, last_bound_m) << "tick " << v->loop().ticks();
+          const Eigen::Isometry3d truth = v->backends().sim->world().truth().T_cl_marker;
+          EXPECT_LE((p.T_cl_marker.translation() - truth.translation()).norm(), p.bound_m)
+              << "tick " << v->loop().ticks();
+        }
+        last_bound_m = p.bound_m;
+        LoopEvent e;
+        while (v->loop().pop_event(e)) {
+        }
+        return more;
+      },
+      90);
+  EXPECT_GE(carried, 1);
+  EXPECT_EQ(allocations, 0u) << "the tracker and the attitude filter are on the tick";
+  EXPECT_EQ(v->loop().tracked_pose().source, control::TrackSource::fused);
+}
+
 }  // namespace
 }  // namespace rovctl::app
