@@ -19,7 +19,6 @@ class AttitudeFilter {
   // leave the sensor's attitude to carry the filter alone.
   bool update(std::chrono::nanoseconds now, bool valid, const Eigen::Quaterniond& q_world_body,
               const Eigen::Vector3d& omega_body_radps);
-  void reset() { have_ = false; }
 
   bool valid() const { return have_; }
   // The filtered attitude carried back or on to `at` by the last body rates (a frame captured a

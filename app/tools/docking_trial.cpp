@@ -26,7 +26,7 @@ void put_pose(const Eigen::Isometry3d& T, std::array<double, 3>& t, std::array<d
   q = {r.w(), r.x(), r.y(), r.z()};
 }
 
-// The simulator's truth beside the estimate in one record; the loop itself never sees it.
+// A pose as the telemetry record holds it (m, quaternion w x y z) against the truth: m and rad.
 void pose_error(const Eigen::Isometry3d& truth, const std::array<double, 3>& t_m,
                 const std::array<double, 4>& q_wxyz, double& error_m, double& error_rad) {
   const Eigen::Vector3d t(t_m[0], t_m[1], t_m[2]);
@@ -35,6 +35,7 @@ void pose_error(const Eigen::Isometry3d& truth, const std::array<double, 3>& t_m
   error_rad = Eigen::AngleAxisd(truth.linear().transpose() * q.toRotationMatrix()).angle();
 }
 
+// The simulator's truth beside the estimate in one record; the loop itself never sees it.
 void score_against_truth(const Eigen::Isometry3d& truth, TelemetryRecord& r) {
   put_pose(truth, r.truth_t_m, r.truth_q_wxyz);
   r.flags |= telemetry_flag::truth_valid;
@@ -150,10 +151,10 @@ class TrialRecorder {
   // An ok pose (the tracker's or the estimate's) against the truth of its frame: right, and
   // within its error bound?
   void score_ok_tick(const TelemetryRecord& r, const Eigen::Isometry3d& at_capture, bool tracked) {
-    TelemetryRecord scored = r;
-    score_against_truth(at_capture, scored);
-    const double mm = (tracked ? r.track_error_m : scored.est_error_m) * 1000.0;
-    const double deg = (tracked ? r.track_error_rad : scored.est_error_rad) * 180.0 / M_PI;
+    double error_m = r.track_error_m, error_rad = r.track_error_rad;
+    if (!tracked) pose_error(at_capture, r.est_t_m, r.est_q_wxyz, error_m, error_rad);
+    const double mm = error_m * 1000.0;
+    const double deg = error_rad * 180.0 / M_PI;
     const double bound_mm = (tracked ? r.track_bound_m : r.error_bound_m) * 1000.0;
     const double bound_deg = tracked ? r.track_bound_deg : r.error_bound_deg;
     ++result_.ok_ticks;
