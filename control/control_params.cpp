@@ -155,8 +155,8 @@ void describe(hal::ParamVisitor& v, ControlParams& p) {
 void describe(hal::ParamVisitor& v, PoseTrackerParams& p) {
   v.param("enabled", p.enabled,
           "the mission acts on the pose tracked across frames; false: on each frame's estimate "
-          "(off by default: a camera shaking on its mount, unseen by the attitude sensor, defeats "
-          "the track)");
+          "(off by default: the recharging mission and the fault matrix are validated on each "
+          "frame's estimate)");
   v.param(
       "max_coast_s", p.max_coast_s,
       {"s", 0.0, 10.0, "the tracked pose is ok at most this long after the last fused estimate"});
@@ -188,8 +188,13 @@ void describe(hal::ParamVisitor& v, PoseTrackerParams& p) {
            "their errors)"});
   v.param("partial_point_mm", p.partial_point_mm,
           {"mm", 0.0, 100.0,
-           "a partial view's sphere centres (supported in both views) lie within this: with the "
-           "track's rotation they update its translation; 0: partial views not used"});
+           "a partial view's sphere centres (their rims seen in both views) lie within this: two "
+           "or more that agree under the track's rotation update its translation; 0: not used"});
+  v.param("unexplained_window_s", p.unexplained_window_s,
+          {"s", 0.0, 60.0,
+           "sound estimates' disagreement with the prediction beyond both bounds, over about this "
+           "long, is the camera's motion the attitude does not carry (shaking on its mount): it "
+           "widens the prediction's bounds; 0: off"});
   v.param("velocity_window_s", p.velocity_window_s,
           {"s", 0.05, 10.0,
            "the velocity is the slope of the fused positions over this much of the history"});

@@ -2,6 +2,7 @@
 #include "control/pose_tracker.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 #include "hal/primitives/duration_seconds.hpp"
@@ -27,6 +28,8 @@ const char* to_string(TrackSource source) {
       return "coasting";
     case TrackSource::aided:
       return "aided";
+    case TrackSource::nudged:
+      return "nudged";
     case TrackSource::none:
       break;
   }
@@ -46,6 +49,10 @@ void PoseTracker::reset() {
   history_size_ = 0;
   history_next_ = 0;
   velocity_w_.setZero();
+  unexplained_m2_ = 0.0;
+  unexplained_deg2_ = 0.0;
+  beyond_gate_ = 0.0;
+  have_innovation_ = false;
   out_ = TrackedPose{};
 }
 
@@ -67,8 +74,8 @@ PoseTracker::WorldPose PoseTracker::to_world(const PoseMeasurement& m,
   return w;
 }
 
-PoseTracker::WorldPose PoseTracker::predicted(std::chrono::nanoseconds at,
-                                              bool attitude_valid) const {
+PoseTracker::WorldPose PoseTracker::predicted(std::chrono::nanoseconds at, bool attitude_valid,
+                                              bool unexplained) const {
   WorldPose p = track_;
   const double dt_s = std::max(0.0, seconds(at - track_.at));
   // The camera's turn is the attitude sensor's to carry, within its drift; without it, the
@@ -79,8 +86,40 @@ PoseTracker::WorldPose PoseTracker::predicted(std::chrono::nanoseconds at,
   p.bound_m += velocity_bound_mps_ * dt_s + 0.5 * params_.accel_mps2 * dt_s * dt_s +
                p.p_w.norm() * turn_deg / kDegPerRad;
   p.bound_deg += turn_deg;
+  // The gates are 99 % bounds: one sound estimate in ten beyond its gate is no longer chance
+  // (a lone one beyond it, in far turbid water, is).
+  constexpr double kShakeShare = 0.1;
+  if (unexplained && beyond_gate_ > kShakeShare) {
+    // Three times the excess's root mean square; the camera's own turn swings the marker's
+    // position by its lever.
+    const double shake_deg = 3.0 * std::sqrt(unexplained_deg2_);
+    p.bound_m += 3.0 * std::sqrt(unexplained_m2_) + p.p_w.norm() * shake_deg / kDegPerRad;
+    p.bound_deg += shake_deg;
+  }
   p.at = at;
   return p;
+}
+
+void PoseTracker::observe_innovation(const WorldPose& prediction, const WorldPose& m) {
+  if (params_.unexplained_window_s <= 0.0) return;
+  // How far the innovation reaches beyond its gate (both bounds); estimates within it explain
+  // themselves. One wild estimate counts no more than twice its gate.
+  const auto excess = [](double innovation, double bound_a, double bound_b) {
+    const double gate = std::hypot(bound_a, bound_b);
+    const double x = std::clamp(innovation - gate, 0.0, 2.0 * gate);
+    return x * x;
+  };
+  const double d_m = (m.p_w - prediction.p_w).norm();
+  const double d_deg = angle_deg(m.R_world_marker, prediction.R_world_marker);
+  const double e_m2 = excess(d_m, prediction.bound_m, m.bound_m);
+  const double e_deg2 = excess(d_deg, prediction.bound_deg, m.bound_deg);
+  const double dt_s = have_innovation_ ? seconds(m.at - innovation_at_) : 0.0;
+  const double a = std::clamp(dt_s / params_.unexplained_window_s, 0.0, 1.0);
+  unexplained_m2_ += a * (e_m2 - unexplained_m2_);
+  unexplained_deg2_ += a * (e_deg2 - unexplained_deg2_);
+  beyond_gate_ += a * ((e_m2 > 0.0 || e_deg2 > 0.0 ? 1.0 : 0.0) - beyond_gate_);
+  innovation_at_ = m.at;
+  have_innovation_ = true;
 }
 
 bool PoseTracker::agree(const WorldPose& a, const WorldPose& b) const {
@@ -115,42 +154,67 @@ void PoseTracker::remember(const WorldPose& pose) {
   estimate_velocity();
 }
 
-bool PoseTracker::aid(const WorldPose& prediction, const PoseMeasurement& m,
-                      const Eigen::Matrix3d& R_world_cl, std::chrono::nanoseconds capture) {
+TrackSource PoseTracker::aid(const WorldPose& prediction, const PoseMeasurement& m,
+                             const Eigen::Matrix3d& R_world_cl, std::chrono::nanoseconds capture) {
   if (params_.partial_point_mm <= 0.0 || m.points <= 0 || m.points > PoseMeasurement::kMaxPoints ||
       !m.T_cl_marker.matrix().allFinite()) {
-    return false;
+    return TrackSource::coasting;
   }
   // The least-squares translation with the rotation fixed: the mean of the points' offsets. Its
   // bound: the points' own, plus the rotation's bound swinging them about the marker's origin.
   const Eigen::Matrix3d R_cl_marker = R_world_cl.transpose() * prediction.R_world_marker;
-  Eigen::Vector3d t = Eigen::Vector3d::Zero();
+  const double point_m = params_.partial_point_mm / 1000.0;
+  const double swing_rad = prediction.bound_deg / kDegPerRad;
+  std::array<Eigen::Vector3d, PoseMeasurement::kMaxPoints> offsets;
+  Eigen::Vector3d t = Eigen::Vector3d::Zero(), centre = Eigen::Vector3d::Zero();
   double lever_m = 0.0;
   for (int i = 0; i < m.points; ++i) {
     const Eigen::Vector3d& c = m.points_marker_m[i];
-    t += m.T_cl_marker * c - R_cl_marker * c;
+    offsets[i] = m.T_cl_marker * c - R_cl_marker * c;
+    t += offsets[i];
+    centre += c;
     lever_m = std::max(lever_m, c.norm());
   }
+  t /= static_cast<double>(m.points);
+  centre /= static_cast<double>(m.points);
+  // Two or more spheres placed where the track's rotation puts them relative to each other
+  // vouch for their translation: a sphere whose centre an occluder shifted (a bar across it moves
+  // it differently in the two views, so its depth is centimetres off) lands off the others.
+  bool rigid = m.points >= 2;
+  for (int i = 0; i < m.points && rigid; ++i) {
+    const double lever_i = (m.points_marker_m[i] - centre).norm();
+    rigid = (offsets[i] - t).norm() <= point_m + lever_i * swing_rad;
+  }
   WorldPose aided = prediction;
-  aided.p_w = R_world_cl * (t / static_cast<double>(m.points));
-  aided.bound_m = params_.partial_point_mm / 1000.0 + lever_m * prediction.bound_deg / kDegPerRad;
+  aided.p_w = R_world_cl * t;
+  aided.bound_m = point_m + lever_m * swing_rad;
   const double innovation_m = (aided.p_w - prediction.p_w).norm();
-  if (innovation_m > std::hypot(aided.bound_m, prediction.bound_m)) return false;
+  if (innovation_m > std::hypot(aided.bound_m, prediction.bound_m)) return TrackSource::coasting;
   // An unrefined fit's depth is loose (a pixel of disparity is centimetres at a metre): a partial
   // view that moved the spheres away from the prediction is trusted no closer than it moved them.
   aided.bound_m = std::max(aided.bound_m, innovation_m);
   const double wp = 1.0 / std::max(1e-12, prediction.bound_m * prediction.bound_m);
   const double wm = 1.0 / std::max(1e-12, aided.bound_m * aided.bound_m);
-  // The partial view moves the track but vouches for nothing: the bound grows on as the coast's
-  // from the last sound estimate. An occluder that cuts a sphere shifts its centre differently in
-  // the two views, so the depth of the spheres still supported was centimetres off in the sim's
-  // occluders scenario (bars), and fused as 3 mm points the track walked 25 mm off over ten
-  // frames while claiming 4.5. Nor do these positions feed the velocity: it is the sound
-  // estimates'. The corrected position is carried back to the last fused time, where the coast
-  // starts from.
   const Eigen::Vector3d p_w = (wp * prediction.p_w + wm * aided.p_w) / (wp + wm);
+  if (rigid) {
+    // Fused into the translation as a sound estimate's would be; the rotation stays the
+    // prediction's, its bound growing with the attitude's drift.
+    track_ = prediction;
+    track_.p_w = p_w;
+    track_.bound_m = std::max({params_.floor_mm / 1000.0, params_.fused_bound_share * aided.bound_m,
+                               1.0 / std::sqrt(wp + wm)});
+    track_.at = capture;
+    sound_at_ = capture;
+    remember(track_);
+    return TrackSource::aided;
+  }
+  // A single sphere, or spheres that do not agree, move the track but vouch for nothing: the
+  // bound grows on as the coast's from the last sound estimate (fused as 3 mm points, a bar's
+  // shifted centres walked the track 25 mm off over ten frames while it claimed 4.5). Nor do
+  // these positions feed the velocity. The corrected position is carried back to the last fused
+  // time, where the coast starts from.
   track_.p_w = p_w - velocity_w_ * std::max(0.0, seconds(capture - track_.at));
-  return true;
+  return TrackSource::nudged;
 }
 
 void PoseTracker::estimate_velocity() {
@@ -170,7 +234,10 @@ void PoseTracker::estimate_velocity() {
   }
   velocity_w_.setZero();
   velocity_bound_mps_ = params_.speed_mps;
-  if (n < 2.0) return;
+  // Two positions leave no scatter to judge their slope by: on a camera shaking on its mount, a
+  // new track's first two (four frames apart) gave a velocity that coasted it 58 mm off within
+  // two frames while its bound said 7.
+  if (n < 3.0) return;
   const double t_mean = t_sum / n;
   const Eigen::Vector3d p_mean = p_sum / n;
   double sxx = 0.0, span_s = 0.0;
@@ -196,7 +263,7 @@ void PoseTracker::estimate_velocity() {
     if (age_s < 0.0 || age_s > params_.velocity_window_s) continue;
     residual_sq += (s.p_w - p_mean - velocity_w_ * (-age_s - t_mean)).squaredNorm();
   }
-  const double scatter_m = n > 2.0 ? 3.0 * std::sqrt(residual_sq / (n - 2.0)) : 0.0;
+  const double scatter_m = 3.0 * std::sqrt(residual_sq / (n - 2.0));
   const double bound =
       std::max(track_.bound_m, scatter_m) / std::sqrt(sxx) + 0.5 * params_.accel_mps2 * span_s;
   velocity_bound_mps_ = std::min(params_.speed_mps, bound);
@@ -260,6 +327,7 @@ const TrackedPose& PoseTracker::update(std::chrono::nanoseconds capture,
       candidate.bound_m += params_.speed_mps * dt_s;
       candidate.bound_deg += params_.attitude_drift_dps * dt_s;
     }
+    if (have_track_) observe_innovation(predicted(capture, attitude_valid, false), m);
     if (have_track_ && agree(predicted(capture, attitude_valid), m)) {
       fuse(predicted(capture, attitude_valid), m);
       have_candidate_ = false;
@@ -273,13 +341,14 @@ const TrackedPose& PoseTracker::update(std::chrono::nanoseconds capture,
       candidate_ = m;
       have_candidate_ = true;
     }
-  } else if (have_track_ && aid(predicted(capture, attitude_valid), measurement, R, capture)) {
-    source = TrackSource::aided;
+  } else if (have_track_) {
+    source = aid(predicted(capture, attitude_valid), measurement, R, capture);
   }
-  out_ = have_track_
-             ? output(source == TrackSource::fused ? track_ : predicted(capture, attitude_valid), R,
-                      source, capture)
-             : TrackedPose{};
+  out_ = have_track_ ? output(source == TrackSource::fused || source == TrackSource::aided
+                                  ? track_
+                                  : predicted(capture, attitude_valid),
+                              R, source, capture)
+                     : TrackedPose{};
   // A sound estimate that disagrees with the track says one of them is wrong: neither is ok until
   // the next frame confirms one. (A camera on a mount that shook 1.5 deg at 8 Hz, unseen by the
   // attitude sensor, had the coast claim ok 113 mm off while each estimate disagreed with it.)

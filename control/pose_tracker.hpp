@@ -13,10 +13,9 @@ namespace rovctl::control {
 
 // Declared rates and limits of the track (the `control.tracker` config section).
 struct PoseTrackerParams {
-  // The mission acts on the tracked pose; false: on each frame's estimate alone. Off until the
-  // track carries a camera that moves on its mount unseen by the attitude sensor: in the sim's
-  // exposure scenario (a mount shaking 1.5 deg at 8 Hz) the estimates disagreed with the track
-  // so often that no trial docked.
+  // The mission acts on the tracked pose; false: on each frame's estimate alone. Off by default:
+  // the recharging mission and the fault matrix are validated on each frame's estimate, not yet
+  // on the track.
   bool enabled = false;
   // The tracked pose is ok at most this long after the last fused estimate.
   double max_coast_s = 1.5;
@@ -42,10 +41,15 @@ struct PoseTrackerParams {
   // errors (the same water, the same fit's lean: a turbid approach's rotation was 2-3 deg off for
   // ten frames in a row), so agreeing frames are not independent draws that average out.
   double fused_bound_share = 1.0;
-  // A partial view's supported sphere centres (in both views) lie within this of the truth: with
-  // the track's rotation they fix the translation while a sphere is hidden. 0: partial views are
-  // not used.
+  // A partial view's sphere centres (those whose rims show in both views) lie within this of the
+  // truth: two or more that agree with each other under the track's rotation fix its translation
+  // while a sphere is hidden. 0: partial views are not used.
   double partial_point_mm = 3.0;
+  // Sound estimates that disagree with the prediction by more than both bounds explain, over
+  // about this long, are a motion of the camera the attitude does not carry (a camera shaking on
+  // its mount): its size widens the prediction's bounds, so the track takes such estimates as
+  // they come and coasts no surer than the camera holds still. 0: off.
+  double unexplained_window_s = 1.0;
   // The velocity is the slope of the fused positions over this much of the track's history: a
   // longer window averages the estimates' noise but lags an accelerating vehicle by half of it.
   double velocity_window_s = 0.2;
@@ -72,6 +76,7 @@ enum class TrackSource : std::uint8_t {
   fused = 1,     // this frame's estimate agreed with the track and was fused into it
   coasting = 2,  // predicted from the last fused estimate
   aided = 3,     // a partial view's spheres fused into the translation, the rotation predicted
+  nudged = 4,    // a partial view moved the translation; the bound grows as the coast's
 };
 const char* to_string(TrackSource source);
 
@@ -131,14 +136,20 @@ class PoseTracker {
   WorldPose to_world(const PoseMeasurement& m, const Eigen::Matrix3d& R_world_cl,
                      std::chrono::nanoseconds at) const;
   // The track predicted to `at` (bounds grown); with the attitude unknown, about the last one.
-  WorldPose predicted(std::chrono::nanoseconds at, bool attitude_valid) const;
+  // With `unexplained` false, without the camera's unexplained motion (what it is judged by).
+  WorldPose predicted(std::chrono::nanoseconds at, bool attitude_valid,
+                      bool unexplained = true) const;
+  // A sound estimate's disagreement with the prediction, beyond what their bounds explain, into
+  // the camera's unexplained motion.
+  void observe_innovation(const WorldPose& prediction, const WorldPose& m);
   bool agree(const WorldPose& a, const WorldPose& b) const;
   void start(const WorldPose& first, const WorldPose& second);
   void fuse(const WorldPose& prediction, const WorldPose& m);
-  // A partial view: the translation its points give with the predicted rotation, fused when it
-  // agrees with the prediction. False when it does not or has no points.
-  bool aid(const WorldPose& prediction, const PoseMeasurement& m, const Eigen::Matrix3d& R_world_cl,
-           std::chrono::nanoseconds capture);
+  // A partial view: the translation its points give with the predicted rotation, fused (aided)
+  // when two or more agree with each other and with the prediction, moving the track without
+  // vouching for it (nudged) when only the prediction agrees, else coasting.
+  TrackSource aid(const WorldPose& prediction, const PoseMeasurement& m,
+                  const Eigen::Matrix3d& R_world_cl, std::chrono::nanoseconds capture);
   void remember(const WorldPose& pose);
   void estimate_velocity();
   TrackedPose output(const WorldPose& pose, const Eigen::Matrix3d& R_world_cl, TrackSource source,
@@ -151,6 +162,12 @@ class PoseTracker {
   WorldPose track_;                       // the last fused pose
   std::chrono::nanoseconds sound_at_{0};  // the last sound estimate fused
   Eigen::Vector3d velocity_w_ = Eigen::Vector3d::Zero();
+  // Mean squares (m^2, deg^2) of the sound estimates' innovations beyond their gates: the
+  // camera's motion the attitude does not carry.
+  double unexplained_m2_ = 0.0, unexplained_deg2_ = 0.0;
+  double beyond_gate_ = 0.0;  // the share of sound estimates beyond their gates
+  bool have_innovation_ = false;
+  std::chrono::nanoseconds innovation_at_{0};
   double velocity_bound_mps_ = 0.0;
   bool have_candidate_ = false;
   WorldPose candidate_;  // a sound estimate the track did not take, waiting for a second

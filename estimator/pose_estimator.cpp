@@ -111,7 +111,7 @@ bool PoseEstimator::segment(const cv::Mat& left_bgr, const cv::Mat& right_bgr) {
   return true;
 }
 
-PoseEstimate PoseEstimator::estimate() {
+PoseEstimate PoseEstimator::estimate(bool partial_view_retries) {
   if (input_error_ != nullptr) return estimate_on_labels(Look::first);
   // A population settled off the marker (beside a sphere cut by the image edge, 30-80 deg off)
   // is where neither refinement can start from, and elitism keeps it there: draw it afresh.
@@ -121,15 +121,19 @@ PoseEstimate PoseEstimator::estimate() {
     ga_.randomise();
     frames_unconfirmed_ = 0;
   }
-  PoseEstimate e = estimate_all_looks();
+  PoseEstimate e = estimate_all_looks(partial_view_retries);
   e.ga_restarted = restart;
   frames_unconfirmed_ = e.refined || e.rim_refined ? 0 : frames_unconfirmed_ + 1;
   return e;
 }
 
-PoseEstimate PoseEstimator::estimate_all_looks() {
+PoseEstimate PoseEstimator::estimate_all_looks(bool partial_view_retries) {
   PoseEstimate first = estimate_on_labels(Look::first);
   if (first.ok) return first;
+  if (!partial_view_retries && first.not_ok_reason == NotOkReason::partial_view &&
+      first.rims_sharp) {
+    return first;
+  }
   int generations = first.generations;
   if (water_segmenter_) {
     // Water takes red first: far out in coastal water the red sphere is a greyish brown under
@@ -332,6 +336,8 @@ PoseEstimate PoseEstimator::estimate_on_labels(Look look) {
         }
       }
       estimate.rim_support = fit.support;
+      estimate.rims_sharp = fit.rms_px <= params_.rim_sharp_rms_px;
+      estimate.T_cl_marker_rims = T;
     }
   }
   estimate.recognised = estimate.fitness >= params_.recognition_threshold;

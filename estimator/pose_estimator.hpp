@@ -65,6 +65,12 @@ struct PoseEstimate {
   bool rim_refined = false;
   double rim_rms_px = std::numeric_limits<double>::quiet_NaN();
   std::array<std::array<double, 3>, 2> rim_support{};
+  // Improved mode: the rims' fit whether or not it was taken (a partial view's is not: a hidden
+  // sphere's rim is not there to confirm it), when it fit sharply (rim_sharp_rms_px). The spheres
+  // whose rims it confirms in both views are placed as truly as the rims show them, which is how
+  // the tracker rides through a hidden sphere.
+  bool rims_sharp = false;
+  Eigen::Isometry3d T_cl_marker_rims = Eigen::Isometry3d::Identity();
   // Improved mode: the centroids or the rims fit the triangle's other tilt about the line of sight
   // as well (estimator/tilt_ambiguity), further off than the fit's own bound, which then reaches
   // to that pose.
@@ -102,7 +108,11 @@ class PoseEstimator {
   // which counts from the start of segment(); then, if that is not ok and water_retry is on,
   // once more on the pair segmented in the water's colour, and if that is not ok either and
   // denoise_retry_px is on, once more on the median-filtered pair.
-  PoseEstimate estimate();
+  // partial_view_retries false: a first look that sees a partial view whose rims fit sharply is
+  // final, without the second and third looks (the caller carries the pose through it on the
+  // spheres those rims confirm; a bar across a sphere is not what the looks are for, and they
+  // were most of a frame's time behind the sim's bars).
+  PoseEstimate estimate(bool partial_view_retries = true);
   void reset();  // fresh random population (marker lost / new search)
 
   const EstimatorParams& params() const { return params_; }
@@ -124,7 +134,7 @@ class PoseEstimator {
   PoseRefiner refiner_;
   RimRefiner rim_;
   // The first look, and the second and third when the one before was not ok.
-  PoseEstimate estimate_all_looks();
+  PoseEstimate estimate_all_looks(bool partial_view_retries);
   enum class Look { first, water, denoised };  // which labels estimate_on_labels sees
   PoseEstimate estimate_on_labels(Look look);
   // When T_mirror, the triangle's other tilt, fits the data as well as T and is recognised, the

@@ -189,7 +189,8 @@ void VehicleLoop::estimate(TickState& t) {
   {
     auto timer = scheduler_.stage(Stage::estimate);
     if (t.have_images) {
-      estimate_ = estimator_.estimate();
+      // While the track is ok it rides through a partial view on the spheres whose rims show.
+      estimate_ = estimator_.estimate(!(config_.control.tracker.enabled && tracked_.ok));
       confirmation_.judge(estimate_, frame_.left_stamp);
     } else {
       estimate_.recognised = false;
@@ -310,7 +311,7 @@ void VehicleLoop::track(TickState& t) {
       attitude ? attitude_filter_.q_world_body_at(at) : Eigen::Quaterniond::Identity();
   tracked_ = t.have_images ? tracker_.update(at, q, attitude,
                                              pose_measurement(estimate_, config_.marker,
-                                                              config_.estimator.sphere_support))
+                                                              config_.estimator.rim_support))
                            : tracker_.predict(at, q, attitude);
   // A frame's ok estimate the track has not taken (its first, or one that disagrees) is no full
   // view yet: the next frame confirms one or the other.

@@ -160,7 +160,8 @@ class TrialRecorder {
     ++result_.ok_ticks;
     const auto source = static_cast<control::TrackSource>(r.track_source);
     if (tracked &&
-        (source == control::TrackSource::coasting || source == control::TrackSource::aided)) {
+        (source == control::TrackSource::coasting || source == control::TrackSource::aided ||
+         source == control::TrackSource::nudged)) {
       ++result_.ok_carried_ticks;
     }
     if (mm >= kRightTranslationMm || deg >= kRightRotationDeg) ++result_.ok_wrong_ticks;

@@ -121,7 +121,7 @@ void score_one(const hal::StereoRig& rig, const hal::MarkerModel& marker,
       if (e.input_error != nullptr) fail(f.left_png, e.input_error);
     }
     if (params.improved()) confirmation.judge(e, f.stamp);
-    const control::PoseMeasurement m = pose_measurement(e, marker, params.sphere_support);
+    const control::PoseMeasurement m = pose_measurement(e, marker, params.rim_support);
     const control::TrackedPose& t = tracker.update(f.stamp, f.q_world_cam, true, m);
     FrameScore s;
     s.sequence = &seq;

@@ -83,6 +83,45 @@ TEST(PoseEstimator, AnEstimateNotOkSaysWhichTestItFailed) {
 }
 
 // Telemetry writes the reason as its token and `rovctl view` reads it back.
+// A sphere hidden in both views: the rims' fit still places the two that show (what the tracker
+// rides through the hidden sphere on), and without the partial-view retries the first look is
+// final, at a fraction of the evaluations.
+TEST(PoseEstimator, AHiddenSpheresPartialViewPlacesTheOthersOnTheirRims) {
+  TestScene scene;
+  const Eigen::Isometry3d truth = hal::make_pose(
+      {0.02, 0.01, 0.55},
+      Eigen::Quaterniond(Eigen::AngleAxisd(0.15, Eigen::Vector3d(1, -1, 0).normalized())));
+  scene.render(truth, 7);
+  for (int v = 0; v < 2; ++v) {
+    const hal::CameraModel& camera = v == 0 ? scene.rig.left : scene.rig.right;
+    cv::Mat& image = v == 0 ? scene.left_bgr : scene.right_bgr;
+    const Eigen::Isometry3d T_cam_cl = v == 0 ? Eigen::Isometry3d::Identity() : scene.rig.T_cr_cl;
+    Eigen::Vector2d uv;
+    ASSERT_TRUE(camera.project(T_cam_cl * truth * scene.marker.spheres[0].centre_marker_m, uv));
+    cv::circle(image, cv::Point(static_cast<int>(uv.x()), static_cast<int>(uv.y())), 40,
+               cv::Scalar(90, 70, 40), cv::FILLED);
+  }
+  long evaluations[2] = {0, 0};
+  for (const bool retries : {true, false}) {
+    PoseEstimator est(scene.rig, scene.marker, EstimatorParams{}, 5);
+    ASSERT_TRUE(est.segment(scene.left_bgr, scene.right_bgr));
+    const long before = est.fitness_evaluations();
+    const PoseEstimate e = est.estimate(retries);
+    evaluations[retries ? 0 : 1] = est.fitness_evaluations() - before;
+    ASSERT_EQ(e.not_ok_reason, NotOkReason::partial_view) << retries;
+    ASSERT_TRUE(e.rims_sharp) << retries;
+    for (int v = 0; v < 2; ++v) {
+      EXPECT_LT(e.rim_support[v][0], EstimatorParams{}.rim_support) << retries;
+      for (int s = 1; s < 3; ++s) {
+        EXPECT_GE(e.rim_support[v][s], EstimatorParams{}.rim_support) << retries;
+        const Eigen::Vector3d c = scene.marker.spheres[s].centre_marker_m;
+        EXPECT_LE((e.T_cl_marker_rims * c - truth * c).norm(), 0.002) << retries << " " << s;
+      }
+    }
+  }
+  EXPECT_LT(evaluations[1], evaluations[0]);
+}
+
 TEST(PoseEstimator, ANotOkReasonReadsBackFromItsToken) {
   for (const NotOkReason r :
        {NotOkReason::none, NotOkReason::partial_view, NotOkReason::not_refined,

@@ -34,18 +34,23 @@ TEST(PoseMeasurement, OkOrOnlyUnconfirmedIsSound) {
   EXPECT_FALSE(pose_measurement(unseen, marker, 0.5).sound);
 }
 
-// A partial view: the spheres supported in both views, no others.
-TEST(PoseMeasurement, APartialViewGivesTheSpheresSupportedInBothViews) {
+// A partial view: the spheres whose rims a sharp rims' fit confirms in both views, placed by that
+// fit; without a sharp rims' fit, none.
+TEST(PoseMeasurement, APartialViewGivesTheSpheresItsRimsConfirmInBothViews) {
   const hal::MarkerModel marker = hal::MarkerModel::standard();
   estimator::PoseEstimate e = recognised(false, estimator::NotOkReason::partial_view);
-  e.sphere_scores = {{{0.9, 0.1, 0.8}, {0.9, 0.9, 0.2}}};
+  e.rim_support = {{{0.9, 0.1, 0.8}, {0.9, 0.9, 0.2}}};
+  e.rims_sharp = true;
+  e.T_cl_marker_rims.translation() = Eigen::Vector3d(0.01, 0.0, 0.79);
   const control::PoseMeasurement m = pose_measurement(e, marker, 0.5);
   EXPECT_FALSE(m.sound);
   ASSERT_EQ(m.points, 1);
   EXPECT_EQ(m.points_marker_m[0], marker.spheres[0].centre_marker_m);
-  e.not_ok_reason = estimator::NotOkReason::bound_over_limit;
-  e.sphere_scores = {{{0.9, 0.9, 0.9}, {0.9, 0.9, 0.9}}};
+  EXPECT_EQ(m.T_cl_marker.translation(), e.T_cl_marker_rims.translation());
+  e.rim_support = {{{0.9, 0.9, 0.9}, {0.9, 0.9, 0.9}}};
   EXPECT_EQ(pose_measurement(e, marker, 0.5).points, 3);
+  e.rims_sharp = false;
+  EXPECT_EQ(pose_measurement(e, marker, 0.5).points, 0);
 }
 
 }  // namespace
