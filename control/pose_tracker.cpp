@@ -128,18 +128,27 @@ bool PoseTracker::agree(const WorldPose& a, const WorldPose& b) const {
          angle_deg(a.R_world_marker, b.R_world_marker) <= std::hypot(a.bound_deg, b.bound_deg);
 }
 
-void PoseTracker::fuse(const WorldPose& prediction, const WorldPose& m) {
+PoseTracker::WorldPose PoseTracker::fused_translation(const WorldPose& prediction,
+                                                      const WorldPose& m) const {
   // Inverse-variance weights, the bounds taken as the same multiple of each error's sigma.
-  const double wp_m = 1.0 / std::max(1e-12, prediction.bound_m * prediction.bound_m);
-  const double wm_m = 1.0 / std::max(1e-12, m.bound_m * m.bound_m);
+  const double wp = 1.0 / std::max(1e-12, prediction.bound_m * prediction.bound_m);
+  const double wm = 1.0 / std::max(1e-12, m.bound_m * m.bound_m);
+  WorldPose fused = prediction;
+  fused.p_w = (wp * prediction.p_w + wm * m.p_w) / (wp + wm);
+  fused.bound_m = std::max(
+      {params_.floor_mm / 1000.0, params_.fused_bound_share * m.bound_m, 1.0 / std::sqrt(wp + wm)});
+  return fused;
+}
+
+void PoseTracker::fuse(const WorldPose& prediction, const WorldPose& m) {
+  const WorldPose translated = fused_translation(prediction, m);
+  track_.p_w = translated.p_w;
+  track_.bound_m = translated.bound_m;
   const double wp_deg = 1.0 / std::max(1e-12, prediction.bound_deg * prediction.bound_deg);
   const double wm_deg = 1.0 / std::max(1e-12, m.bound_deg * m.bound_deg);
-  track_.p_w = (wp_m * prediction.p_w + wm_m * m.p_w) / (wp_m + wm_m);
   const Eigen::Quaterniond qp(prediction.R_world_marker);
   const Eigen::Quaterniond qm(m.R_world_marker);
   track_.R_world_marker = qp.slerp(wm_deg / (wp_deg + wm_deg), qm).toRotationMatrix();
-  track_.bound_m = std::max({params_.floor_mm / 1000.0, params_.fused_bound_share * m.bound_m,
-                             1.0 / std::sqrt(wp_m + wm_m)});
   track_.bound_deg = std::max({params_.floor_deg, params_.fused_bound_share * m.bound_deg,
                                1.0 / std::sqrt(wp_deg + wm_deg)});
   track_.at = m.at;
@@ -193,16 +202,11 @@ TrackSource PoseTracker::aid(const WorldPose& prediction, const PoseMeasurement&
   // An unrefined fit's depth is loose (a pixel of disparity is centimetres at a metre): a partial
   // view that moved the spheres away from the prediction is trusted no closer than it moved them.
   aided.bound_m = std::max(aided.bound_m, innovation_m);
-  const double wp = 1.0 / std::max(1e-12, prediction.bound_m * prediction.bound_m);
-  const double wm = 1.0 / std::max(1e-12, aided.bound_m * aided.bound_m);
-  const Eigen::Vector3d p_w = (wp * prediction.p_w + wm * aided.p_w) / (wp + wm);
+  const WorldPose fused = fused_translation(prediction, aided);
   if (rigid) {
     // Fused into the translation as a sound estimate's would be; the rotation stays the
     // prediction's, its bound growing with the attitude's drift.
-    track_ = prediction;
-    track_.p_w = p_w;
-    track_.bound_m = std::max({params_.floor_mm / 1000.0, params_.fused_bound_share * aided.bound_m,
-                               1.0 / std::sqrt(wp + wm)});
+    track_ = fused;
     track_.at = capture;
     sound_at_ = capture;
     remember(track_);
@@ -213,7 +217,7 @@ TrackSource PoseTracker::aid(const WorldPose& prediction, const PoseMeasurement&
   // shifted centres walked the track 25 mm off over ten frames while it claimed 4.5). Nor do
   // these positions feed the velocity. The corrected position is carried back to the last fused
   // time, where the coast starts from.
-  track_.p_w = p_w - velocity_w_ * std::max(0.0, seconds(capture - track_.at));
+  track_.p_w = fused.p_w - velocity_w_ * std::max(0.0, seconds(capture - track_.at));
   return TrackSource::nudged;
 }
 
@@ -328,8 +332,9 @@ const TrackedPose& PoseTracker::update(std::chrono::nanoseconds capture,
       candidate.bound_deg += params_.attitude_drift_dps * dt_s;
     }
     if (have_track_) observe_innovation(predicted(capture, attitude_valid, false), m);
-    if (have_track_ && agree(predicted(capture, attitude_valid), m)) {
-      fuse(predicted(capture, attitude_valid), m);
+    const WorldPose prediction = have_track_ ? predicted(capture, attitude_valid) : WorldPose{};
+    if (have_track_ && agree(prediction, m)) {
+      fuse(prediction, m);
       have_candidate_ = false;
       source = TrackSource::fused;
     } else if (have_candidate_ && agree(candidate, m)) {

@@ -144,6 +144,9 @@ class PoseTracker {
   void observe_innovation(const WorldPose& prediction, const WorldPose& m);
   bool agree(const WorldPose& a, const WorldPose& b) const;
   void start(const WorldPose& first, const WorldPose& second);
+  // The prediction with m's position fused in by inverse variance, its bound never below the
+  // floor nor fused_bound_share of m's.
+  WorldPose fused_translation(const WorldPose& prediction, const WorldPose& m) const;
   void fuse(const WorldPose& prediction, const WorldPose& m);
   // A partial view: the translation its points give with the predicted rotation, fused (aided)
   // when two or more agree with each other and with the prediction, moving the track without
