@@ -61,6 +61,23 @@ void describe(hal::ParamVisitor& v, EstimatorParams& p) {
            "improved mode: a frame whose estimate is still not ok after the second look is "
            "median-filtered with this aperture (3 or 5) and looked at once more, kept if ok: "
            "sensor noise and JPEG blocks break a small sphere's rim into specks; 0 off"});
+  v.param("retry_memory_frames", p.retry_memory_frames,
+          {"frames", 1, 1000,
+           "improved mode, with the tracker on: for this many frames after the first look was "
+           "last ok, a frame it declines for a partial view or no marker gets the second and "
+           "third looks only while they earn their keep (retry_pause_frames): such a frame "
+           "mostly has a bar or a hidden sphere in it, which the tracker carries the pose "
+           "through (the sim's bars hide a sphere for up to 2.3 s)"});
+  v.param("retry_misses", p.retry_misses,
+          {"-", 1, 1000,
+           "improved mode, with the tracker on, within retry_memory_frames: after this many "
+           "tries in a row of the second and third looks that none made ok, they pause "
+           "(retry_pause_frames)"});
+  v.param("retry_pause_frames", p.retry_pause_frames,
+          {"frames", 1, 1000,
+           "improved mode, with the tracker on: once paused (retry_misses), the second and "
+           "third looks are tried once per this many frames declined for a partial view or no "
+           "marker"});
   v.param("ga_restart_frames", p.ga_restart_frames,
           {"frames", 0, 1000,
            "improved mode: after this many frames in a row whose pose neither the centroids nor "

@@ -103,6 +103,12 @@ struct EstimatorParams {
   // Improved mode: and if that is not ok either, the pair median-filtered with this aperture is
   // looked at once more, kept only if ok. 0 off.
   int denoise_retry_px = 5;
+  // Improved mode, Looks::as_needed (the tracker on): how long the first look's last ok counts
+  // as seeing the marker (longer than a bar hides a sphere), after how many tries in a row that
+  // none made ok the later looks pause, and for how many declined frames.
+  int retry_memory_frames = 90;
+  int retry_misses = 8;
+  int retry_pause_frames = 15;
   // Improved mode: after this many frames in a row that no refinement confirmed, the GA starts
   // the next frame from a fresh population. 0 off.
   int ga_restart_frames = 3;

@@ -93,9 +93,9 @@ void PoseEstimator::reset() {
   frames_unconfirmed_ = 0;
 }
 
-PoseEstimate PoseEstimator::update(const cv::Mat& left_bgr, const cv::Mat& right_bgr) {
+PoseEstimate PoseEstimator::update(const cv::Mat& left_bgr, const cv::Mat& right_bgr, Looks looks) {
   segment(left_bgr, right_bgr);
-  return estimate();
+  return estimate(looks);
 }
 
 bool PoseEstimator::segment(const cv::Mat& left_bgr, const cv::Mat& right_bgr) {
@@ -111,7 +111,7 @@ bool PoseEstimator::segment(const cv::Mat& left_bgr, const cv::Mat& right_bgr) {
   return true;
 }
 
-PoseEstimate PoseEstimator::estimate(bool partial_view_retries) {
+PoseEstimate PoseEstimator::estimate(Looks looks) {
   if (input_error_ != nullptr) return estimate_on_labels(Look::first);
   // A population settled off the marker (beside a sphere cut by the image edge, 30-80 deg off)
   // is where neither refinement can start from, and elitism keeps it there: draw it afresh.
@@ -121,19 +121,35 @@ PoseEstimate PoseEstimator::estimate(bool partial_view_retries) {
     ga_.randomise();
     frames_unconfirmed_ = 0;
   }
-  PoseEstimate e = estimate_all_looks(partial_view_retries);
+  PoseEstimate e = estimate_all_looks(looks);
   e.ga_restarted = restart;
   frames_unconfirmed_ = e.refined || e.rim_refined ? 0 : frames_unconfirmed_ + 1;
+  const bool first_ok = e.ok && !e.water_corrected && !e.denoised;
+  frames_since_first_ok_ = first_ok ? 0 : std::min(frames_since_first_ok_ + 1, kNever);
   return e;
 }
 
-PoseEstimate PoseEstimator::estimate_all_looks(bool partial_view_retries) {
+PoseEstimate PoseEstimator::estimate_all_looks(Looks looks) {
   PoseEstimate first = estimate_on_labels(Look::first);
   if (first.ok) return first;
-  if (!partial_view_retries && first.not_ok_reason == NotOkReason::partial_view &&
-      first.rims_sharp) {
+  // Skipped for a sphere or the marker gone from a first look that has been seeing it, while
+  // the later looks missed their last retry_misses tries, but tried again every
+  // retry_pause_frames such frames: what the water needs can change, and a look never tried
+  // would never be found needed again. A loose fit (smear, noise) is what they are for.
+  const bool seeing = frames_since_first_ok_ < params_.retry_memory_frames;
+  const bool hidden = !first.recognised || first.not_ok_reason == NotOkReason::partial_view;
+  if (looks == Looks::as_needed && seeing && hidden && retry_misses_ >= params_.retry_misses &&
+      declined_since_retry_ < params_.retry_pause_frames) {
+    ++declined_since_retry_;
     return first;
   }
+  declined_since_retry_ = 0;
+  PoseEstimate e = later_looks(first);
+  retry_misses_ = e.ok ? 0 : std::min(retry_misses_ + 1, kNever);
+  return e;
+}
+
+PoseEstimate PoseEstimator::later_looks(PoseEstimate first) {
   int generations = first.generations;
   if (water_segmenter_) {
     // Water takes red first: far out in coastal water the red sphere is a greyish brown under

@@ -90,6 +90,20 @@ struct PoseEstimate {
   std::chrono::nanoseconds compute_time{0};
 };
 
+// How far a frame looks past a first look that is not ok.
+enum class Looks : std::uint8_t {
+  all,  // the second look, then the third, until one is ok
+  // For a caller that carries the pose through a frame the first look declines (the tracker):
+  // while the first look has been seeing the marker (ok within
+  // EstimatorParams::retry_memory_frames), a frame it declines for a partial view or no marker
+  // at all gets the second and third looks only if they have been earning their keep: after
+  // EstimatorParams::retry_misses tries in a row that none made ok, one try per
+  // EstimatorParams::retry_pause_frames such frames. Those frames mostly have a bar or a hidden
+  // sphere in them, which is not what the looks are for, and the looks were most of a frame's
+  // time behind the sim's bars; a loose fit (smear, noise) always gets them.
+  as_needed,
+};
+
 class PoseEstimator {
  public:
   // Throws std::invalid_argument when the params are inconsistent (EstimatorParams::validate).
@@ -99,7 +113,7 @@ class PoseEstimator {
   PoseEstimator& operator=(const PoseEstimator&) = delete;
 
   // One frame: segment() then estimate(). Allocates nothing after construction.
-  PoseEstimate update(const cv::Mat& left_bgr, const cv::Mat& right_bgr);
+  PoseEstimate update(const cv::Mat& left_bgr, const cv::Mat& right_bgr, Looks looks = Looks::all);
   // The two stages of a frame, timed apart by the tick. segment() labels both images; false
   // (and the next estimate() says why) when an image's size or type disagrees with the rig.
   // The images are referenced, not copied: they must outlive the estimate() that follows.
@@ -108,11 +122,8 @@ class PoseEstimator {
   // which counts from the start of segment(); then, if that is not ok and water_retry is on,
   // once more on the pair segmented in the water's colour, and if that is not ok either and
   // denoise_retry_px is on, once more on the median-filtered pair.
-  // partial_view_retries false: a first look that sees a partial view whose rims fit sharply is
-  // final, without the second and third looks (the caller carries the pose through it on the
-  // spheres those rims confirm; a bar across a sphere is not what the looks are for, and they
-  // were most of a frame's time behind the sim's bars).
-  PoseEstimate estimate(bool partial_view_retries = true);
+  // Looks::as_needed: the second and third only where the scene has needed them (below).
+  PoseEstimate estimate(Looks looks = Looks::all);
   void reset();  // fresh random population (marker lost / new search)
 
   const EstimatorParams& params() const { return params_; }
@@ -134,7 +145,9 @@ class PoseEstimator {
   PoseRefiner refiner_;
   RimRefiner rim_;
   // The first look, and the second and third when the one before was not ok.
-  PoseEstimate estimate_all_looks(bool partial_view_retries);
+  PoseEstimate estimate_all_looks(Looks looks);
+  // The second look, then the third, after a first that was not ok.
+  PoseEstimate later_looks(PoseEstimate first);
   enum class Look { first, water, denoised };  // which labels estimate_on_labels sees
   PoseEstimate estimate_on_labels(Look look);
   // When T_mirror, the triangle's other tilt, fits the data as well as T and is recognised, the
@@ -149,6 +162,11 @@ class PoseEstimator {
   const cv::Mat* images_[2] = {nullptr, nullptr};  // the last segment()'s, for the second look
   long extra_evaluations_ = 0;
   int frames_unconfirmed_ = 0;  // frames in a row with no refinement accepted
+  // Looks::as_needed's memory (saturating counts).
+  static constexpr int kNever = 1 << 30;
+  int frames_since_first_ok_ = kNever;
+  int retry_misses_ = 0;          // tries of the later looks in a row that none made ok
+  int declined_since_retry_ = 0;  // declined frames since the later looks were last tried
   std::chrono::steady_clock::time_point frame_start_{};
   const char* input_error_ = nullptr;
 };

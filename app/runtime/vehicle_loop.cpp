@@ -189,8 +189,9 @@ void VehicleLoop::estimate(TickState& t) {
   {
     auto timer = scheduler_.stage(Stage::estimate);
     if (t.have_images) {
-      // While the track is ok it rides through a partial view on the spheres whose rims show.
-      estimate_ = estimator_.estimate(!(config_.control.tracker.enabled && tracked_.ok));
+      // The tracker carries the pose through a frame the first look declines for a bar.
+      estimate_ = estimator_.estimate(config_.control.tracker.enabled ? estimator::Looks::as_needed
+                                                                      : estimator::Looks::all);
       confirmation_.judge(estimate_, frame_.left_stamp);
     } else {
       estimate_.recognised = false;

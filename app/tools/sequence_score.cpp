@@ -108,20 +108,28 @@ void score_one(const hal::StereoRig& rig, const hal::MarkerModel& marker,
                const estimator::EstimatorParams& params,
                const control::PoseTrackerParams& tracker_params, const RenderedSequence& seq,
                int updates_per_frame, std::uint64_t seed, std::vector<FrameScore>& out) {
-  estimator::PoseEstimator estimator(rig, marker, params, estimator_seed(seq.name, seed));
-  estimator::PoseConfirmation confirmation(params.confirm);
+  // Two estimators from one seed: the still arm looks at every frame as far as it can; the
+  // tracked arm looks as the loop does with the tracker on (Looks::as_needed).
+  estimator::PoseEstimator still(rig, marker, params, estimator_seed(seq.name, seed));
+  estimator::PoseEstimator looked(rig, marker, params, estimator_seed(seq.name, seed));
+  estimator::PoseConfirmation still_confirmation(params.confirm);
+  estimator::PoseConfirmation looked_confirmation(params.confirm);
   control::PoseTracker tracker(tracker_params, Eigen::Isometry3d::Identity(),
                                params.ok_bound_mm / 1000.0, params.ok_bound_deg);
   for (const SequenceFrame& f : seq.frames) {
     const cv::Mat left = read_set_image(f.left_png, rig.left);
     const cv::Mat right_image = read_set_image(f.right_png, rig.right);
-    estimator::PoseEstimate e;
+    estimator::PoseEstimate e, seen;
     for (int u = 0; u < updates_per_frame; ++u) {
-      e = estimator.update(left, right_image);
+      e = still.update(left, right_image);
       if (e.input_error != nullptr) fail(f.left_png, e.input_error);
+      seen = looked.update(left, right_image, estimator::Looks::as_needed);
     }
-    if (params.improved()) confirmation.judge(e, f.stamp);
-    const control::PoseMeasurement m = pose_measurement(e, marker, params.rim_support);
+    if (params.improved()) {
+      still_confirmation.judge(e, f.stamp);
+      looked_confirmation.judge(seen, f.stamp);
+    }
+    const control::PoseMeasurement m = pose_measurement(seen, marker, params.rim_support);
     const control::TrackedPose& t = tracker.update(f.stamp, f.q_world_cam, true, m);
     FrameScore s;
     s.sequence = &seq;

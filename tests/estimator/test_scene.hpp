@@ -3,6 +3,7 @@
 #pragma once
 
 #include <Eigen/Geometry>
+#include <opencv2/imgproc.hpp>
 #include <random>
 #include <string>
 
@@ -31,6 +32,19 @@ struct TestScene {
 
   void render(const Eigen::Isometry3d& T_cl_marker, std::uint64_t seed = 1) {
     hal::mock::render_stereo(left, right, rig, T_cl_marker, seed, left_bgr, right_bgr);
+  }
+
+  // Paints sphere s out of both rendered views in the water's colour (a sphere behind a bar).
+  void hide_sphere(const Eigen::Isometry3d& T_cl_marker, int s) {
+    for (int v = 0; v < 2; ++v) {
+      const hal::CameraModel& camera = v == 0 ? rig.left : rig.right;
+      const Eigen::Isometry3d T_cam_cl = v == 0 ? Eigen::Isometry3d::Identity() : rig.T_cr_cl;
+      Eigen::Vector2d uv;
+      if (!camera.project(T_cam_cl * T_cl_marker * marker.spheres[s].centre_marker_m, uv)) continue;
+      cv::circle(v == 0 ? left_bgr : right_bgr,
+                 cv::Point(static_cast<int>(uv.x()), static_cast<int>(uv.y())), 40,
+                 cv::Scalar(90, 70, 40), cv::FILLED);
+    }
   }
 
   // An image of plain water, no marker: a pair of them is a frame nothing can be confirmed in.
