@@ -121,32 +121,36 @@ PoseEstimate PoseEstimator::estimate(Looks looks) {
     ga_.randomise();
     frames_unconfirmed_ = 0;
   }
-  PoseEstimate e = estimate_all_looks(looks);
+  PoseEstimate first = estimate_on_labels(Look::first);
+  const bool later = !first.ok && later_looks_needed(first, looks);
+  PoseEstimate e = later ? later_looks(first) : first;
+  remember_looks(e, later);
   e.ga_restarted = restart;
   frames_unconfirmed_ = e.refined || e.rim_refined ? 0 : frames_unconfirmed_ + 1;
-  const bool first_ok = e.ok && !e.water_corrected && !e.denoised;
-  frames_since_first_ok_ = first_ok ? 0 : std::min(frames_since_first_ok_ + 1, kNever);
   return e;
 }
 
-PoseEstimate PoseEstimator::estimate_all_looks(Looks looks) {
-  PoseEstimate first = estimate_on_labels(Look::first);
-  if (first.ok) return first;
+bool PoseEstimator::later_looks_needed(const PoseEstimate& first, Looks looks) const {
+  if (looks == Looks::all) return true;
   // Skipped for a sphere or the marker gone from a first look that has been seeing it, while
   // the later looks missed their last retry_misses tries, but tried again every
   // retry_pause_frames such frames: what the water needs can change, and a look never tried
   // would never be found needed again. A loose fit (smear, noise) is what they are for.
   const bool seeing = frames_since_first_ok_ < params_.retry_memory_frames;
   const bool hidden = !first.recognised || first.not_ok_reason == NotOkReason::partial_view;
-  if (looks == Looks::as_needed && seeing && hidden && retry_misses_ >= params_.retry_misses &&
-      declined_since_retry_ < params_.retry_pause_frames) {
-    ++declined_since_retry_;
-    return first;
+  return !(seeing && hidden && retry_misses_ >= params_.retry_misses &&
+           declined_since_retry_ < params_.retry_pause_frames);
+}
+
+void PoseEstimator::remember_looks(const PoseEstimate& e, bool later_tried) {
+  const bool first_ok = e.ok && !e.water_corrected && !e.denoised;
+  frames_since_first_ok_ = first_ok ? 0 : std::min(frames_since_first_ok_ + 1, kNever);
+  if (later_tried) {
+    declined_since_retry_ = 0;
+    retry_misses_ = e.ok ? 0 : std::min(retry_misses_ + 1, kNever);
+  } else if (!e.ok) {
+    declined_since_retry_ = std::min(declined_since_retry_ + 1, kNever);
   }
-  declined_since_retry_ = 0;
-  PoseEstimate e = later_looks(first);
-  retry_misses_ = e.ok ? 0 : std::min(retry_misses_ + 1, kNever);
-  return e;
 }
 
 PoseEstimate PoseEstimator::later_looks(PoseEstimate first) {

@@ -144,8 +144,10 @@ class PoseEstimator {
   BlobSeeder blobs_;
   PoseRefiner refiner_;
   RimRefiner rim_;
-  // The first look, and the second and third when the one before was not ok.
-  PoseEstimate estimate_all_looks(Looks looks);
+  // Whether a first look that was not ok gets the second and third (always, with Looks::all).
+  bool later_looks_needed(const PoseEstimate& first, Looks looks) const;
+  // Looks::as_needed's memory, from the frame's estimate and whether the later looks were tried.
+  void remember_looks(const PoseEstimate& e, bool later_tried);
   // The second look, then the third, after a first that was not ok.
   PoseEstimate later_looks(PoseEstimate first);
   enum class Look { first, water, denoised };  // which labels estimate_on_labels sees
