@@ -155,8 +155,7 @@ void describe(hal::ParamVisitor& v, ControlParams& p) {
 void describe(hal::ParamVisitor& v, PoseTrackerParams& p) {
   v.param("enabled", p.enabled,
           "the mission acts on the pose tracked across frames; false: on each frame's estimate "
-          "(off by default: the recharging mission and the fault matrix are validated on each "
-          "frame's estimate)");
+          "alone");
   v.param(
       "max_coast_s", p.max_coast_s,
       {"s", 0.0, 10.0, "the tracked pose is ok at most this long after the last fused estimate"});

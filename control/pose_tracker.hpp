@@ -13,10 +13,8 @@ namespace rovctl::control {
 
 // Declared rates and limits of the track (the `control.tracker` config section).
 struct PoseTrackerParams {
-  // The mission acts on the tracked pose; false: on each frame's estimate alone. Off by default:
-  // the recharging mission and the fault matrix are validated on each frame's estimate, not yet
-  // on the track.
-  bool enabled = false;
+  // The mission acts on the tracked pose; false: on each frame's estimate alone.
+  bool enabled = true;
   // The tracked pose is ok at most this long after the last fused estimate.
   double max_coast_s = 1.5;
   // How fast the vehicle's velocity can change: the coast's position bound grows by half this
