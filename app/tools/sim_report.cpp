@@ -60,6 +60,15 @@ void summarise_recharge(const std::vector<TrialResult>& results, SimSummary& s) 
       clearance.empty() ? -1.0 : *std::min_element(clearance.begin(), clearance.end());
 }
 
+// The text reports' form of a figure the JSON writes as -1 when there is no sample (no trial
+// docked, charged or departed): "none" in a summary, "-" in a trial's row, never a number.
+std::string figure(double v, int decimals, const char* none = "none", double scale = 1.0) {
+  if (v < 0.0) return none;
+  char text[32];
+  std::snprintf(text, sizeof(text), "%.*f", decimals, scale * v);
+  return text;
+}
+
 }  // namespace
 
 SimSummary summarise(const std::vector<TrialResult>& results) {
@@ -160,27 +169,30 @@ std::string summary_text(const SimSummary& s, const std::vector<TrialResult>& re
   o << "trial  start_m  current_mps  result     state    aborts  t_dock_s  lateral_mm  yaw_deg  "
        "est_err_mm\n";
   for (const TrialResult& r : results) {
-    std::snprintf(
-        line, sizeof(line), "%5d  %7.2f  %11.3f  %-9s  %-7s  %6d  %8.1f  %10.1f  %7.2f  %10.1f\n",
-        r.conditions.index, r.conditions.distance_m, r.conditions.current_mean_world_mps.norm(),
-        trial_docked(r) ? "DOCKED" : (r.docked ? "off-tol" : "no dock"), r.final_state.c_str(),
-        r.aborts, r.time_to_dock_s, r.lateral_error_mm, r.yaw_error_deg,
-        r.estimate_error_mm_median);
+    std::snprintf(line, sizeof(line), "%5d  %7.2f  %11.3f  %-9s  %-7s  %6d  %8s  %10s  %7s  %10s\n",
+                  r.conditions.index, r.conditions.distance_m,
+                  r.conditions.current_mean_world_mps.norm(),
+                  trial_docked(r) ? "DOCKED" : (r.docked ? "off-tol" : "no dock"),
+                  r.final_state.c_str(), r.aborts, figure(r.time_to_dock_s, 1, "-").c_str(),
+                  figure(r.lateral_error_mm, 1, "-").c_str(),
+                  r.docked ? figure(r.yaw_error_deg, 2).c_str() : "-",
+                  figure(r.estimate_error_mm_median, 1, "-").c_str());
     o << line;
   }
   std::snprintf(
       line, sizeof(line),
-      "\ndocked %d of %d (%.0f %%)  time to dock median %.1f s  lateral error p95 %.1f mm  "
-      "yaw error p95 %.2f deg\ntouched the station over %.0f mm off the axis: %d trials "
-      "(largest touch %.1f mm)\nticks %llu  overruns %llu  tick jitter p99 %.3f ms (max %.3f)  "
-      "estimator %.2f ms per tick  estimate error median %.1f mm\nok estimates %llu ticks, ok "
+      "\ndocked %d of %d (%.0f %%)  time to dock median %s s  lateral error p95 %s mm  "
+      "yaw error p95 %s deg\ntouched the station over %.0f mm off the axis: %d trials "
+      "(largest touch %s mm)\nticks %llu  overruns %llu  tick jitter p99 %.3f ms (max %.3f)  "
+      "estimator %.2f ms per tick  estimate error median %s mm\nok estimates %llu ticks, ok "
       "but wrong (>= %.0f mm or %.0f deg from their image's truth) %llu in %d trials (worst ok "
       "%.1f mm, %.2f deg); off by more than their own error bound %llu\n",
-      s.docked, s.trials, 100.0 * s.success_rate, s.time_to_dock_s_median,
-      s.final_lateral_error_mm_p95, s.final_yaw_error_deg_p95, kTouchOffCentreMm,
-      s.touched_off_centre, s.touch_lateral_mm_max, static_cast<unsigned long long>(s.ticks),
-      static_cast<unsigned long long>(s.overruns), s.tick_jitter_ms_p99, s.tick_jitter_ms_max,
-      s.estimator_ms_mean, s.estimate_error_mm_median, static_cast<unsigned long long>(s.ok_ticks),
+      s.docked, s.trials, 100.0 * s.success_rate, figure(s.time_to_dock_s_median, 1).c_str(),
+      figure(s.final_lateral_error_mm_p95, 1).c_str(), figure(s.final_yaw_error_deg_p95, 2).c_str(),
+      kTouchOffCentreMm, s.touched_off_centre, figure(s.touch_lateral_mm_max, 1).c_str(),
+      static_cast<unsigned long long>(s.ticks), static_cast<unsigned long long>(s.overruns),
+      s.tick_jitter_ms_p99, s.tick_jitter_ms_max, s.estimator_ms_mean,
+      figure(s.estimate_error_mm_median, 1).c_str(), static_cast<unsigned long long>(s.ok_ticks),
       kRightTranslationMm, kRightRotationDeg, static_cast<unsigned long long>(s.ok_wrong_ticks),
       s.trials_ok_wrong, s.ok_error_mm_max, s.ok_error_deg_max,
       static_cast<unsigned long long>(s.ok_over_bound_ticks));
@@ -198,25 +210,29 @@ std::string summary_text(const SimSummary& s, const std::vector<TrialResult>& re
       const RechargeResult& c = r.charge;
       std::snprintf(line, sizeof(line),
                     "%5d  %-10s  %-37.37s  %8.2f  %7.4f  %14.2f  %7d  %7.1f  %10.1f  %6.2f  "
-                    "%.2f-%.2f  %11.3f  %s\n",
+                    "%.2f-%.2f  %11s  %s\n",
                     r.conditions.index, trial_recharged(r) ? "RECHARGED" : r.final_state.c_str(),
                     c.end_reason.empty() ? "-" : c.end_reason.c_str(), c.seated_s / 3600.0,
                     c.contact_fraction, c.unseated_unnoticed_max_s, c.reseats, c.hold_wh,
                     c.charged_wh, 100.0 * c.hold_fraction, c.soc_start, c.soc_end,
-                    c.undock_clearance_m, c.undock_marker_in_view ? "in view" : "-");
+                    figure(c.undock_clearance_m, 3, "-").c_str(),
+                    c.undock_marker_in_view ? "in view" : "-");
       o << line;
     }
-    std::snprintf(
-        line, sizeof(line),
-        "\nrecharged (docked, charged, departed) %d of %d (%.0f %%)  charged %d  "
-        "departed %d  clear with marker in view %d\ncontact held min %.4f (median "
-        "%.4f) of the charging time  longest unnoticed unseat %.2f s  re-seats %d\n"
-        "seated median %.2f h  hold energy median %.1f Wh of %.1f Wh charged  hold/charged "
-        "median %.2f %% (max %.2f %%)  undock clearance min %.3f m\n",
-        s.recharged, s.trials, 100.0 * s.recharge_rate, s.charged, s.departed, s.undock_clear,
-        s.contact_fraction_min, s.contact_fraction_median, s.unseated_unnoticed_max_s, s.reseats,
-        s.seated_h_median, s.hold_wh_median, s.charged_wh_median, 100.0 * s.hold_fraction_median,
-        100.0 * s.hold_fraction_max, s.undock_clearance_m_min);
+    std::snprintf(line, sizeof(line),
+                  "\nrecharged (docked, charged, departed) %d of %d (%.0f %%)  charged %d  "
+                  "departed %d  clear with marker in view %d\ncontact held min %s (median "
+                  "%s) of the charging time  longest unnoticed unseat %.2f s  re-seats %d\n"
+                  "seated median %s h  hold energy median %s Wh of %s Wh charged  hold/charged "
+                  "median %s %% (max %s %%)  undock clearance min %s m\n",
+                  s.recharged, s.trials, 100.0 * s.recharge_rate, s.charged, s.departed,
+                  s.undock_clear, figure(s.contact_fraction_min, 4).c_str(),
+                  figure(s.contact_fraction_median, 4).c_str(), s.unseated_unnoticed_max_s,
+                  s.reseats, figure(s.seated_h_median, 2).c_str(),
+                  figure(s.hold_wh_median, 1).c_str(), figure(s.charged_wh_median, 1).c_str(),
+                  figure(s.hold_fraction_median, 2, "none", 100.0).c_str(),
+                  figure(s.hold_fraction_max, 2, "none", 100.0).c_str(),
+                  figure(s.undock_clearance_m_min, 3).c_str());
     o << line;
   }
   return o.str();

@@ -80,5 +80,31 @@ TEST(SimReport, OkButWrongTicksAreSummedAndSaid) {
   EXPECT_NE(text.find("off by more than their own error bound 5"), std::string::npos) << text;
 }
 
+// A figure with no sample is -1 in the JSON; the text says so in words, not as a number that reads
+// like a measurement ("hold/charged median -100.00 %" when no trial charged).
+TEST(SimReport, FiguresWithoutASampleReadNoneInTheText) {
+  TrialResult knocked_out;  // recharge trial that docked but never charged or departed
+  knocked_out.recharge = true;
+  knocked_out.docked = true;
+  knocked_out.mission_docked = true;
+  knocked_out.time_to_dock_s = 18.0;
+  knocked_out.lateral_error_mm = 2.0;
+  knocked_out.final_state = "IDLE";
+  const SimSummary s = summarise({knocked_out, TrialResult{}});
+  ASSERT_TRUE(s.recharge);
+  EXPECT_EQ(s.hold_fraction_median, -1.0);
+  EXPECT_EQ(s.undock_clearance_m_min, -1.0);
+  EXPECT_NE(summary_json(s).find("\"undock_clearance_m_min\": -1"), std::string::npos)
+      << "the JSON keeps its documented -1";
+  const std::string text = summary_text(s, {knocked_out, TrialResult{}});
+  EXPECT_NE(text.find("hold/charged median none % (max none %)"), std::string::npos) << text;
+  EXPECT_NE(text.find("undock clearance min none m"), std::string::npos) << text;
+  EXPECT_NE(text.find("contact held min none (median none)"), std::string::npos) << text;
+  EXPECT_NE(text.find("largest touch none mm"), std::string::npos) << text;
+  EXPECT_EQ(text.find("-1."), std::string::npos) << text;
+  EXPECT_EQ(text.find("-100"), std::string::npos) << text;
+  EXPECT_NE(text.find("time to dock median 18.0 s"), std::string::npos) << text;
+}
+
 }  // namespace
 }  // namespace rovctl::app
