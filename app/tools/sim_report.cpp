@@ -60,13 +60,17 @@ void summarise_recharge(const std::vector<TrialResult>& results, SimSummary& s) 
       clearance.empty() ? -1.0 : *std::min_element(clearance.begin(), clearance.end());
 }
 
-// The text reports' form of a figure the JSON writes as -1 when there is no sample (no trial
-// docked, charged or departed): "none" in a summary, "-" in a trial's row, never a number.
-std::string figure(double v, int decimals, const char* none = "none", double scale = 1.0) {
-  if (v < 0.0) return none;
+std::string fixed(double v, int decimals) {
   char text[32];
-  std::snprintf(text, sizeof(text), "%.*f", decimals, scale * v);
+  std::snprintf(text, sizeof(text), "%.*f", decimals, v);
   return text;
+}
+
+// The text reports' form of a figure the JSON writes as -1 when there is no sample (no trial
+// docked, charged or departed): "none" in a summary, "-" in a trial's row, never a number. Only
+// for figures that are never negative; a signed one (yaw) says "none" by its own condition.
+std::string figure(double v, int decimals, const char* none = "none", double scale = 1.0) {
+  return v < 0.0 ? none : fixed(scale * v, decimals);
 }
 
 }  // namespace
@@ -175,7 +179,7 @@ std::string summary_text(const SimSummary& s, const std::vector<TrialResult>& re
                   trial_docked(r) ? "DOCKED" : (r.docked ? "off-tol" : "no dock"),
                   r.final_state.c_str(), r.aborts, figure(r.time_to_dock_s, 1, "-").c_str(),
                   figure(r.lateral_error_mm, 1, "-").c_str(),
-                  r.docked ? figure(r.yaw_error_deg, 2).c_str() : "-",
+                  r.docked ? fixed(r.yaw_error_deg, 2).c_str() : "-",
                   figure(r.estimate_error_mm_median, 1, "-").c_str());
     o << line;
   }

@@ -104,6 +104,12 @@ TEST(SimReport, FiguresWithoutASampleReadNoneInTheText) {
   EXPECT_EQ(text.find("-1."), std::string::npos) << text;
   EXPECT_EQ(text.find("-100"), std::string::npos) << text;
   EXPECT_NE(text.find("time to dock median 18.0 s"), std::string::npos) << text;
+
+  // A signed figure is not a sentinel: a docked trial's yaw error of -0.35 deg prints as such.
+  TrialResult turned_left = knocked_out;
+  turned_left.yaw_error_deg = -0.35;
+  EXPECT_NE(summary_text(summarise({turned_left}), {turned_left}).find("  -0.35  "),
+            std::string::npos);
 }
 
 }  // namespace
