@@ -21,6 +21,9 @@ void EstimatorParams::validate() const {
   if (ga.elite_count >= ga.population) {
     throw std::invalid_argument("estimator.ga.elite_count must be below estimator.ga.population");
   }
+  if (rim_loose_rms_px < rim_sharp_rms_px) {
+    throw std::invalid_argument("estimator.rim_loose_rms_px must be at least rim_sharp_rms_px");
+  }
   if (fitness.outer_radius_fraction <= fitness.inner_radius_fraction) {
     throw std::invalid_argument(
         "estimator.fitness.outer_radius_fraction must exceed inner_radius_fraction");
@@ -100,17 +103,31 @@ void describe(hal::ParamVisitor& v, EstimatorParams& p) {
           {"-", 0.0, 1.0,
            "improved mode: most of the ring a smeared sphere may cover and still count as seen; "
            "a pose that is off, or too far, puts colour all round the ring"});
+  v.param("rim_bound", p.rim_bound,
+          "improved mode: how a rim fit's error bound is found. counted: its covariance counts 8 "
+          "independent points a silhouette, 99 % quantile for rims within rim_quantile_rms_px, "
+          "else 3 sigma; measured: on the first look, from the rims' own misfit per silhouette "
+          "(radius and centre), 99 % quantile, with rims up to rim_loose_rms_px where tighter "
+          "than the centroids' and the centroids' noise over the coordinates the pose leaves "
+          "free",
+          {"counted", "measured"});
   v.param("rim_sharp_rms_px", p.rim_sharp_rms_px,
           {"px", 0.1, 10.0,
-           "improved mode: the rim fit replaces the centroids' pose only when the rims fit this "
-           "well (rms); a sharp sphere's rim fits to 0.35-0.45 px, a blurred or noisy one (motion "
+           "improved mode: the rim fit replaces the centroids' pose when the rims fit this well "
+           "(rms); a sharp sphere's rim fits to 0.35-0.45 px, a blurred or noisy one (motion "
            "blur, JPEG) leans the pose while its centroids stay true"});
   v.param("rim_quantile_rms_px", p.rim_quantile_rms_px,
           {"px", 0.1, 10.0,
-           "improved mode: a rim fit's error bound is its covariance's 99 % quantile only when the "
-           "rims fit this well (rms); a looser fit (JPEG blocks, a faded or smeared edge) keeps 3 "
-           "sigma of the trace, as the centroids do: the quantile was calibrated on sharp rims, "
-           "and a JPEG-blocked rim fitting to 0.61 px was 6.4 deg off inside a 3.5 deg quantile"});
+           "improved mode, rim_bound counted: a rim fit's error bound is its covariance's 99 % "
+           "quantile only when the rims fit this well (rms); a looser fit (JPEG blocks, a faded "
+           "or smeared edge) keeps 3 sigma of the trace, as the centroids do: the quantile was "
+           "calibrated on sharp rims, and a JPEG-blocked rim fitting to 0.61 px was 6.4 deg off "
+           "inside a 3.5 deg quantile"});
+  v.param("rim_loose_rms_px", p.rim_loose_rms_px,
+          {"px", 0.1, 10.0,
+           "improved mode, rim_bound measured: a rim fit looser than rim_sharp_rms_px but within "
+           "this (rms) replaces the centroids' pose only where its error bound is tighter than "
+           "theirs"});
   v.param("rim_ring_max", p.rim_ring_max,
           {"-", 0.0, 1.0,
            "improved mode: the rim fit replaces the centroids' pose only when no sphere's colour "

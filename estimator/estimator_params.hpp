@@ -83,8 +83,11 @@ struct EstimatorParams {
   // its colour and none of the ring).
   double sphere_support = 0.8;
   double rim_support = 0.4;
+  // "counted" or "measured": how a rim fit's error bound is found (see describe()).
+  std::string rim_bound = "counted";
   double rim_sharp_rms_px = 0.62;
   double rim_quantile_rms_px = 0.5;
+  double rim_loose_rms_px = 0.8;
   double rim_ring_max = 0.1;
   // Improved mode: a motion-blurred sphere fills its disc and smears over part of its ring, so it
   // scores under sphere_support while its centroid (mid-exposure) is right. It counts as seen when

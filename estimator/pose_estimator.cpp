@@ -30,6 +30,27 @@ const char* image_error(const cv::Mat& image, const hal::CameraModel& camera) {
   return nullptr;
 }
 
+// A rim fit's error bound. Measured (rim_bound measured): on the first look the rims' own misfit
+// sets it: a rim off in radius or centre shows it. The water-corrected and denoised looks move
+// every rim's edge alike (backscatter taken off, a median's rounding), a bias their misfit cannot
+// show, so they count independent points and keep the trace's 3 sigma, as the centroids do.
+// Counted: the quantile only for sharp rims off the first two looks. A 5 px median rounds a 14 px
+// sphere's rim off by a bias its covariance does not know (a noise + JPEG pair fitted 39 deg off
+// inside a 3.5 deg quantile), and so do JPEG's chroma blocks on a rim that fits loosely.
+ErrorBound rim_bound(const EstimatorParams& p, bool first_look, bool denoised, const RimFit& fit) {
+  if (p.rim_bound == "measured") {
+    if (first_look && fit.measured) return error_bound_99(fit.covariance_measured);
+    return error_bound_3_sigma(fit.covariance);
+  }
+  const bool sharp = !denoised && fit.rms_px <= p.rim_quantile_rms_px;
+  return sharp ? error_bound_99(fit.covariance) : error_bound_3_sigma(fit.covariance);
+}
+
+// How far a bound is over the ok limits (1: at the limit).
+double over_ok_limits(const ErrorBound& bound, const EstimatorParams& p) {
+  return std::max(bound.m * 1000.0 / p.ok_bound_mm, bound.deg / p.ok_bound_deg);
+}
+
 }  // namespace
 
 const char* to_string(NotOkReason reason) {
@@ -224,6 +245,7 @@ PoseEstimate PoseEstimator::estimate_on_labels(Look look) {
     return none;
   }
   const bool improved = params_.improved();
+  const bool measured = params_.rim_bound == "measured";
   const bool use_blobs = improved && (params_.blob_seeding || params_.refine_elite);
   if (use_blobs) {
     blobs_.find(0, labels_[0]);
@@ -286,14 +308,16 @@ PoseEstimate PoseEstimator::estimate_on_labels(Look look) {
         estimate.refine_rms_px = report.rms_px;
         // The centroids' scatter understates their shading bias: the trace's 3 sigma, not a
         // quantile. Their fit has the triangle's tilt ambiguity as the rims' does (below).
-        const ErrorBound bound = error_bound_3_sigma(report.covariance);
+        // Measured: the centroids' noise over the coordinates the pose leaves free.
+        const double scale = measured ? report.sigma_free_px / report.sigma_px : 1.0;
+        const ErrorBound bound = error_bound_3_sigma(scale * scale * report.covariance);
         estimate.error_bound_deg = bound.deg;
         estimate.error_bound_m = bound.m;
         Eigen::Isometry3d T_mirror = mirrored_tilt(T, marker_);
         RefineReport mirror;
         if (refiner_.refine(blobs_.blobs(), T_mirror, 1.5, &mirror)) {
-          const double sigma2 =
-              std::pow(std::max(report.rms_px / std::sqrt(2.0), PoseRefiner::kCentroidNoisePx), 2);
+          const double sigma = measured ? report.sigma_free_px : report.sigma_px;
+          const double sigma2 = sigma * sigma;
           if (fits_as_well(report.centroids * report.rms_px * report.rms_px / sigma2,
                            mirror.centroids * mirror.rms_px * mirror.rms_px / sigma2)) {
             widen_to_mirror(T, T_mirror, estimate);
@@ -325,19 +349,22 @@ PoseEstimate PoseEstimator::estimate_on_labels(Look look) {
       for (const auto& view : ring_at_rims) {
         for (double r : view) spill = std::max(spill, r);
       }
-      if (weakest >= params_.rim_support && fit.rms_px <= params_.rim_sharp_rms_px &&
+      const ErrorBound bound = rim_bound(params_, look == Look::first, look == Look::denoised, fit);
+      // Measured: a rim fit looser than sharp (JPEG blocks, a faded edge) replaces the centroids'
+      // pose only where it knows the pose better than they do.
+      const bool sharp = fit.rms_px <= params_.rim_sharp_rms_px;
+      const double loosest = measured ? params_.rim_loose_rms_px : params_.rim_sharp_rms_px;
+      const ErrorBound centroids{estimate.error_bound_m, estimate.error_bound_deg};
+      const bool known_better = !estimate.refined || !std::isfinite(centroids.m) ||
+                                !std::isfinite(centroids.deg) ||
+                                over_ok_limits(bound, params_) < over_ok_limits(centroids, params_);
+      if (weakest >= params_.rim_support && fit.rms_px <= loosest && (sharp || known_better) &&
           spill <= params_.rim_ring_max && f >= params_.recognition_threshold &&
           f >= estimate.fitness - 0.15) {
         estimate.T_cl_marker = T;
         estimate.fitness = f;
         estimate.rim_refined = true;
         estimate.rim_rms_px = fit.rms_px;
-        // A 5 px median rounds a 14 px sphere's rim off by a bias its covariance does not know
-        // (a seed-3 noise + JPEG pair fitted 39 deg off inside a 3.5 deg quantile), and so do
-        // JPEG's chroma blocks on a rim that fits loosely: both keep the trace's 3 sigma.
-        const bool sharp = look != Look::denoised && fit.rms_px <= params_.rim_quantile_rms_px;
-        const ErrorBound bound =
-            sharp ? error_bound_99(fit.covariance) : error_bound_3_sigma(fit.covariance);
         estimate.error_bound_deg = bound.deg;
         estimate.error_bound_m = bound.m;
         estimate.mirror_fits = false;
@@ -346,8 +373,7 @@ PoseEstimate PoseEstimator::estimate_on_labels(Look look) {
         Eigen::Isometry3d T_mirror = mirrored_tilt(T, marker_);
         RimFit mirror;
         if (rim_.refine(labels_[0], labels_[1], T_mirror, &mirror) &&
-            weakest_support(mirror) >= params_.rim_support &&
-            mirror.rms_px <= params_.rim_sharp_rms_px) {
+            weakest_support(mirror) >= params_.rim_support && mirror.rms_px <= loosest) {
           const double sigma2 = std::pow(std::max(fit.rms_px, RimRefiner::kEdgeNoisePx), 2);
           if (fits_as_well(fit.independent_points * fit.rms_px * fit.rms_px / sigma2,
                            mirror.independent_points * mirror.rms_px * mirror.rms_px / sigma2)) {

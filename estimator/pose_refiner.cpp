@@ -121,6 +121,11 @@ bool PoseRefiner::refine(const BlobSet& blobs, Eigen::Isometry3d& T_cl_marker, d
     report->rms_px = rms;
     // Per coordinate: rms / sqrt(2); never below the centroids' own noise (a quarter pixel).
     const double sigma_px = std::max(rms / std::sqrt(2.0), kCentroidNoisePx);
+    report->sigma_px = sigma_px;
+    // rms / sqrt(2) is the mean square over all 2 n coordinates, as if the fit had taken nothing
+    // from them: with four centroids that is half the variance.
+    report->sigma_free_px =
+        std::max(std::sqrt(r0.squaredNorm() / (2.0 * used - 6.0)), kCentroidNoisePx);
     if (j_at_T || jacobian()) {
       const Eigen::Matrix<double, 6, 6> A = J.transpose() * J;
       report->covariance =

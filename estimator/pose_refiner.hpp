@@ -15,8 +15,13 @@ namespace rovctl::estimator {
 struct RefineReport {
   int centroids = 0;    // whole blobs used (of 6)
   double rms_px = 0.0;  // per centroid (u, v)
+  // A centroid coordinate's noise: rms_px / sqrt(2), at least kCentroidNoisePx.
+  double sigma_px = 0.0;
+  // The same as the residual measures it: its sum of squares over the 2 n - 6 coordinates the
+  // pose's six parameters leave free, at least kCentroidNoisePx.
+  double sigma_free_px = 0.0;
   // Covariance of the pose's error, rotation vector (rad) then translation (m), from the
-  // Gauss-Newton normal equations with the residual's own scale (at least the centroids' noise).
+  // Gauss-Newton normal equations with sigma_px.
   Eigen::Matrix<double, 6, 6> covariance = Eigen::Matrix<double, 6, 6>::Zero();
 };
 

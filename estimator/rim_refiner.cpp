@@ -222,8 +222,6 @@ bool RimRefiner::jacobian(const Edges& edges, const Eigen::Isometry3d& T, const 
 bool RimRefiner::refine(const cv::Mat& left_labels, const cv::Mat& right_labels,
                         Eigen::Isometry3d& T_cl_marker, RimFit* fit) const {
   const cv::Mat* labels[2] = {&left_labels, &right_labels};
-  using Vector7 = Eigen::Matrix<double, 7, 1>;
-  using Matrix7 = Eigen::Matrix<double, 7, 7>;
   Eigen::Isometry3d T = T_cl_marker;
   // Where the segmenter puts a colour edge depends on the contrast with the water (a faded edge
   // ends early, a bright one blooms), and a quarter pixel on every rim is millimetres in range
@@ -301,12 +299,10 @@ bool RimRefiner::refine(const cv::Mat& left_labels, const cv::Mat& right_labels,
   }
   // The final edges, seen from the refined pose, decide support and the residual.
   const Band& tight = kBands.back();
-  {
-    Silhouettes sil;
-    predict(T, sil);
-    find_edges(labels, sil, edges);
-    if (!full_residuals(T, offset_px, raw0, r0)) return false;
-  }
+  Silhouettes final_sil;
+  predict(T, final_sil);
+  find_edges(labels, final_sil, edges);
+  if (!full_residuals(T, offset_px, raw0, r0)) return false;
   RimFit result;
   double sum2 = 0.0;
   for (int i = 0; i < edges.count; ++i) {
@@ -332,19 +328,81 @@ bool RimRefiner::refine(const cv::Mat& left_labels, const cv::Mat& right_labels,
       for (double s : view) silhouettes += s > 0.0 ? 1 : 0;
     }
     result.independent_points = kIndependentPerSilhouette * silhouettes;
-    const double sigma_px = std::max(result.rms_px, kEdgeNoisePx) *
-                            std::sqrt(result.inliers / result.independent_points);
+    const double white_px = std::max(result.rms_px, kEdgeNoisePx);
+    const double sigma_px = white_px * std::sqrt(result.inliers / result.independent_points);
     Matrix7 A;
     Vector7 g;
     if (normal_equations(T, raw0, r0, offset_px, A, g)) {
       // The pose's marginal covariance: the offset is a nuisance parameter.
       const Matrix7 cov = sigma_px * sigma_px * A.ldlt().solve(Matrix7::Identity());
       result.covariance = cov.topLeftCorner<6, 6>();
+      result.measured =
+          measured_covariance(edges, final_sil, J, r0, w, white_px, A, result.covariance_measured);
     }
     *fit = result;
   }
   T_cl_marker = T;
   return true;
+}
+
+bool RimRefiner::measured_covariance(const Edges& edges, const Silhouettes& sil, const Jacobian& J,
+                                     const Residuals& r, const Residuals& w, double white_px,
+                                     const Matrix7& A,
+                                     Eigen::Matrix<double, 6, 6>& covariance) const {
+  // M, the covariance of the fit's gradient: every point's own noise, then per silhouette its
+  // radius and centre misfit, which all of its points share.
+  Matrix7 M = Matrix7::Zero();
+  std::array<Eigen::Matrix<double, 3, 7>, 2 * kSpheres> G;  // gradient per unit of (a, b, c)
+  // Per sphere, the gradient of its centre moved alike in both views (per unit of b and c).
+  std::array<Eigen::Matrix<double, 2, 7>, kSpheres> shared{};
+  for (auto& g : shared) g.setZero();
+  double radius2 = 0.0, centre2 = 0.0;
+  int seen = 0;
+  for (int view = 0; view < 2; ++view) {
+    for (int s = 0; s < spheres_; ++s) {
+      Eigen::Matrix3d P = Eigen::Matrix3d::Zero();
+      Eigen::Vector3d b = Eigen::Vector3d::Zero();
+      Eigen::Matrix<double, 3, 7> Gs = Eigen::Matrix<double, 3, 7>::Zero();
+      int n = 0;
+      for (int i = edges.first[view][s]; i < edges.first[view][s + 1]; ++i) {
+        Vector7 j;
+        j.head<6>() = J.row(i).transpose();
+        j(6) = -1.0;
+        M.noalias() += (w(i) * w(i) * white_px * white_px) * j * j.transpose();
+        if (std::abs(r(i)) > kInlierPx) continue;
+        // r ~ a + b cos(theta) + c sin(theta) about the silhouette's centre.
+        const Eigen::Vector2d d = edges.points[i].uv_px - sil[view][s].centre_px;
+        const double theta = std::atan2(d.y(), d.x());
+        const Eigen::Vector3d phi(1.0, std::cos(theta), std::sin(theta));
+        P.noalias() += phi * phi.transpose();
+        b += r(i) * phi;
+        Gs.noalias() += w(i) * phi * j.transpose();
+        ++n;
+      }
+      shared[s] += Gs.bottomRows<2>();
+      if (n < kMinVisibleRays) continue;
+      const Eigen::Vector3d abc = P.ldlt().solve(b);
+      if (!abc.allFinite()) continue;
+      G[seen++] = Gs;
+      radius2 += abc(0) * abc(0);
+      centre2 += abc(1) * abc(1) + abc(2) * abc(2);
+    }
+  }
+  if (seen < kMinMeasuredSilhouettes) return false;
+  // What is left after the fit: its seven parameters explain about two of the radii (range and
+  // the edge offset) and five of the centres' coordinates.
+  const double floor2 = kMisfitFloorPx * kMisfitFloorPx;
+  const double radius_var = kMisfitInflation * std::max(radius2 / (seen - 2), floor2);
+  const double centre_var = kMisfitInflation * std::max(centre2 / (2 * seen - 5), floor2);
+  const Eigen::Vector3d v(radius_var, centre_var, centre_var);
+  for (int k = 0; k < seen; ++k) M.noalias() += G[k].transpose() * v.asDiagonal() * G[k];
+  // A sphere's centre moved alike in both views is a move of the sphere, which the pose takes up
+  // and leaves no misfit for: the misfit cannot measure it, so it is credited at a floor.
+  const double bias2 = kSharedCentreBiasPx * kSharedCentreBiasPx;
+  for (int s = 0; s < spheres_; ++s) M.noalias() += bias2 * shared[s].transpose() * shared[s];
+  const Matrix7 A_inverse = A.ldlt().solve(Matrix7::Identity());
+  covariance = (A_inverse * M * A_inverse).topLeftCorner<6, 6>();
+  return covariance.allFinite();
 }
 
 }  // namespace rovctl::estimator

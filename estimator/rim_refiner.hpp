@@ -25,6 +25,15 @@ struct RimFit {
   double independent_points = 0.0;
   // Covariance of the pose's error, rotation vector (rad) then translation (m).
   Eigen::Matrix<double, 6, 6> covariance = Eigen::Matrix<double, 6, 6>::Zero();
+  // The same with the rims' own misfit in place of the count of independent points: each
+  // silhouette's residuals resolved into a radius (their mean) and a centre (their first
+  // harmonic), these components' variances measured over the silhouettes seen and carried through
+  // the fit (a sandwich, A^-1 M A^-1). A rim off in radius or centre widens it; white noise along
+  // a rim averages out of it. Set (`measured`) when kMinMeasuredSilhouettes rims had
+  // kMinVisibleRays inliers each. A sphere's centre moved alike in both views leaves no misfit, so
+  // that is credited kSharedCentreBiasPx.
+  bool measured = false;
+  Eigen::Matrix<double, 6, 6> covariance_measured = Eigen::Matrix<double, 6, 6>::Zero();
 };
 
 class RimRefiner {
@@ -48,6 +57,17 @@ class RimRefiner {
   // the covariance counts about this many independent points per silhouette.
   static constexpr double kIndependentPerSilhouette = 8.0;
   static constexpr double kEdgeNoisePx = 0.3;  // the least noise a rim point is credited with
+  // The measured covariance: the silhouettes it needs, the least misfit a component is credited
+  // with, and the factor on the measured variances, which a handful of silhouettes estimate.
+  static constexpr int kMinMeasuredSilhouettes = 4;
+  static constexpr double kMisfitFloorPx = 0.05;
+  static constexpr double kMisfitInflation = 1.5;
+  // The least bias credited to a sphere's centre moved alike in both views: the side of a sphere
+  // away from the light, or a colour fading into the water, ends its silhouette early in both
+  // views. In murky water the measured covariance's rotation bound without it was 0.7-1.0 deg at
+  // 0.8 m against errors of 0.8-1.3 deg; 0.15 px covers them and keeps the shipped camera's
+  // 1.0-1.5 m pairs under the ok limits.
+  static constexpr double kSharedCentreBiasPx = 0.15;
 
  private:
   static constexpr int kSpheres = 3;
@@ -79,6 +99,8 @@ class RimRefiner {
   };
   using Residuals = Eigen::Matrix<double, kMaxPoints, 1>;
   using Jacobian = Eigen::Matrix<double, kMaxPoints, 6>;
+  using Vector7 = Eigen::Matrix<double, 7, 1>;  // (rotation vector, translation, edge offset)
+  using Matrix7 = Eigen::Matrix<double, 7, 7>;
 
   // The sphere's centre in one camera's frame at pose T.
   Eigen::Vector3d centre_in_view(const Eigen::Isometry3d& T, int view, int sphere) const;
@@ -95,6 +117,12 @@ class RimRefiner {
   // rb, residuals() at T.
   bool jacobian(const Edges& edges, const Eigen::Isometry3d& T, const Residuals& rb,
                 Jacobian& J) const;
+  // RimFit::covariance_measured of the final fit: the silhouettes it was seen from, J and the
+  // weights w at it, r its residuals after the offset, A its normal equations (with the offset's
+  // prior), white_px the noise of one rim point. False when too few silhouettes measure it.
+  bool measured_covariance(const Edges& edges, const Silhouettes& sil, const Jacobian& J,
+                           const Residuals& r, const Residuals& w, double white_px,
+                           const Matrix7& A, Eigen::Matrix<double, 6, 6>& covariance) const;
 
   hal::StereoRig rig_;
   hal::MarkerModel marker_;

@@ -549,5 +549,31 @@ TEST(PoseEstimator, ALooseRimFitKeepsTheTraceBound) {
   EXPECT_GE(loose, 1);
 }
 
+// The same pair with rim_bound measured: the rims fit to 0.58-0.61 px, about 6 deg off, and their
+// measured misfit (the red rim's radius off by a pixel or more) does not vouch for them.
+TEST(PoseEstimator, AMeasuredBoundDoesNotVouchForARimFitOffInRadius) {
+  const hal::StereoRig rig = load_stereo_calibration(testing::shipped_calibration_path());
+  const WaterPair pair = read_water_pair("noise_jpeg_q80/002", {-0.17327, -0.403619, 1.27694},
+                                         {0.99630475, 0.01093526, 0.07218575, -0.04523804});
+  ASSERT_FALSE(pair.left.empty() || pair.right.empty());
+  EstimatorParams measured;
+  measured.rim_bound = "measured";
+  int wrong_but_ok = 0, wrong_rims = 0;
+  for (std::uint64_t seed = 0; seed < 3; ++seed) {
+    PoseEstimator estimator(rig, hal::MarkerModel::standard(), measured, seed);
+    const PoseEstimate e = after_ten_frames(estimator, pair);
+    const double mm = translation_error_mm(e.T_cl_marker, pair.truth);
+    const double deg = rotation_error_deg(e.T_cl_marker, pair.truth);
+    wrong_but_ok += e.ok && (mm >= 10.0 || deg >= 5.0) ? 1 : 0;
+    if (e.ok) {
+      EXPECT_LE(mm, 1000.0 * e.error_bound_m) << "seed " << seed;
+      EXPECT_LE(deg, e.error_bound_deg) << "seed " << seed;
+    }
+    wrong_rims += rotation_error_deg(e.T_cl_marker_rims, pair.truth) >= 5.0 ? 1 : 0;
+  }
+  EXPECT_EQ(wrong_but_ok, 0);
+  EXPECT_GE(wrong_rims, 1) << "the pair no longer shows a rim fit that is wrong";
+}
+
 }  // namespace
 }  // namespace rovctl::estimator
