@@ -94,6 +94,22 @@ TEST(DockingTrial, DocksOnAFixedSeed) {
   EXPECT_LE(100 * r.ok_over_bound_ticks, r.ok_ticks) << r.ok_over_bound_ticks << " over";
 }
 
+// Turbid water, seed 1, trial 0, with estimator.rim_bound measured: the marker is found 1.35 m
+// out, and on its first frames the third look's (denoised) rims fitted 10 deg off. Three sigma of
+// their count said 2 deg and two ticks were ok and wrong; their measured misfit says 5-10 deg.
+TEST(DockingTrial, AMeasuredBoundVouchesForNoDenoisedRimFitOffInTurbidWater) {
+  Fixture f;
+  f.config.estimator.rim_bound = "measured";
+  f.config.sim.scenario = "turbid";
+  const hal::mock::TrialGenerator generator(f.config.sim, f.config.vehicle, f.rig, f.config.marker);
+  TrialOptions options;
+  options.max_time_s = 2.0;
+  const TrialResult r = run_docking_trial(f.config, f.rig, generator.make(0, 1), options);
+  EXPECT_GT(r.ok_ticks, 20u);
+  EXPECT_EQ(r.ok_wrong_ticks, 0u) << "worst ok " << r.ok_error_mm_max << " mm, "
+                                  << r.ok_error_deg_max << " deg";
+}
+
 // Largest tilt of the camera off level over a trial: the angle between world down (the
 // marker's y axis) and the camera's y axis, from the true T_cl_marker.
 double max_tilt_deg(const TrialResult& r) {
