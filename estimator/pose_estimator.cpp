@@ -39,8 +39,9 @@ const char* image_error(const cv::Mat& image, const hal::CameraModel& camera) {
 // Counted: the quantile only for sharp rims off the first two looks. A 5 px median rounds a 14 px
 // sphere's rim off by a bias its covariance does not know (a noise + JPEG pair fitted 39 deg off
 // inside a 3.5 deg quantile), and so do JPEG's chroma blocks on a rim that fits loosely.
-ErrorBound rim_bound(const EstimatorParams& p, bool first_look, bool denoised, const RimFit& fit) {
-  if (p.rim_bound == "measured") {
+ErrorBound rim_bound(const EstimatorParams& p, bool measured_bound, bool first_look, bool denoised,
+                     const RimFit& fit) {
+  if (measured_bound) {
     const ErrorBound counted = error_bound_3_sigma(fit.covariance);
     if (!fit.measured) return counted;
     const ErrorBound measured = error_bound_99(fit.covariance_measured);
@@ -92,13 +93,15 @@ PoseEstimator::PoseEstimator(const hal::StereoRig& rig, const hal::MarkerModel& 
     : rig_(rig),
       marker_(marker),
       params_(validated(params)),
+      measured_bound_(params_.rim_bound == "measured"),
       segmenter_(marker, params_.improved() ? params_.water_correction : 0.0),
       codec_(params_.search, params_.ga_reading().coding == "gray"),
       fitness_(rig, marker, params_.fitness),
       ga_(params_.ga, codec_, fitness_, seed, params_.ga_reading()),
       blobs_(rig, marker),
       refiner_(rig, marker),
-      rim_(rig, marker) {
+      rim_(rig, marker,
+           measured_bound_ ? RimRefiner::Misfit::measured : RimRefiner::Misfit::ignored) {
   if (params_.improved() && params_.water_retry > 0.0) {
     water_segmenter_.emplace(marker, params_.water_retry);
   }
@@ -251,7 +254,6 @@ PoseEstimate PoseEstimator::estimate_on_labels(Look look) {
     return none;
   }
   const bool improved = params_.improved();
-  const bool measured = params_.rim_bound == "measured";
   const bool use_blobs = improved && (params_.blob_seeding || params_.refine_elite);
   if (use_blobs) {
     blobs_.find(0, labels_[0]);
@@ -315,14 +317,14 @@ PoseEstimate PoseEstimator::estimate_on_labels(Look look) {
         // The centroids' scatter understates their shading bias: the trace's 3 sigma, not a
         // quantile. Their fit has the triangle's tilt ambiguity as the rims' does (below).
         // Measured: the centroids' noise over the coordinates the pose leaves free.
-        const double scale = measured ? report.sigma_free_px / report.sigma_px : 1.0;
+        const double scale = measured_bound_ ? report.sigma_free_px / report.sigma_px : 1.0;
         const ErrorBound bound = error_bound_3_sigma(scale * scale * report.covariance);
         estimate.error_bound_deg = bound.deg;
         estimate.error_bound_m = bound.m;
         Eigen::Isometry3d T_mirror = mirrored_tilt(T, marker_);
         RefineReport mirror;
         if (refiner_.refine(blobs_.blobs(), T_mirror, 1.5, &mirror)) {
-          const double sigma = measured ? report.sigma_free_px : report.sigma_px;
+          const double sigma = measured_bound_ ? report.sigma_free_px : report.sigma_px;
           const double sigma2 = sigma * sigma;
           if (fits_as_well(report.centroids * report.rms_px * report.rms_px / sigma2,
                            mirror.centroids * mirror.rms_px * mirror.rms_px / sigma2)) {
@@ -355,16 +357,18 @@ PoseEstimate PoseEstimator::estimate_on_labels(Look look) {
       for (const auto& view : ring_at_rims) {
         for (double r : view) spill = std::max(spill, r);
       }
-      const ErrorBound bound = rim_bound(params_, look == Look::first, look == Look::denoised, fit);
+      const ErrorBound bound =
+          rim_bound(params_, measured_bound_, look == Look::first, look == Look::denoised, fit);
       // Measured: a rim fit looser than sharp (JPEG blocks, a faded edge) replaces the centroids'
       // pose only where it knows the pose better than they do.
       const bool sharp = fit.rms_px <= params_.rim_sharp_rms_px;
-      const double loosest = measured ? params_.rim_loose_rms_px : params_.rim_sharp_rms_px;
-      const ErrorBound centroids{estimate.error_bound_m, estimate.error_bound_deg};
-      const bool known_better = !estimate.refined || !std::isfinite(centroids.m) ||
-                                !std::isfinite(centroids.deg) ||
-                                over_ok_limits(bound, params_) < over_ok_limits(centroids, params_);
-      if (weakest >= params_.rim_support && fit.rms_px <= loosest && (sharp || known_better) &&
+      const double loosest = measured_bound_ ? params_.rim_loose_rms_px : params_.rim_sharp_rms_px;
+      const auto known_better = [&] {
+        const ErrorBound centroids{estimate.error_bound_m, estimate.error_bound_deg};
+        return !estimate.refined || !std::isfinite(centroids.m) || !std::isfinite(centroids.deg) ||
+               over_ok_limits(bound, params_) < over_ok_limits(centroids, params_);
+      };
+      if (weakest >= params_.rim_support && fit.rms_px <= loosest && (sharp || known_better()) &&
           spill <= params_.rim_ring_max && f >= params_.recognition_threshold &&
           f >= estimate.fitness - 0.15) {
         estimate.T_cl_marker = T;

@@ -136,6 +136,7 @@ class PoseEstimator {
   hal::StereoRig rig_;
   hal::MarkerModel marker_;
   EstimatorParams params_;
+  bool measured_bound_ = false;  // params_.rim_bound is "measured"
   HueSegmenter segmenter_;
   std::optional<HueSegmenter> water_segmenter_;  // improved mode with water_retry > 0
   GeneCodec codec_;

@@ -77,10 +77,11 @@ double RimRefiner::Silhouette::radius_along(const Eigen::Vector2d& d, int& hint)
   return (pa.x() * e.y() - pa.y() * e.x()) / den * n;
 }
 
-RimRefiner::RimRefiner(const hal::StereoRig& rig, const hal::MarkerModel& marker)
+RimRefiner::RimRefiner(const hal::StereoRig& rig, const hal::MarkerModel& marker, Misfit misfit)
     : rig_(rig),
       marker_(marker),
-      spheres_(static_cast<int>(std::min<std::size_t>(marker.spheres.size(), kSpheres))) {}
+      spheres_(static_cast<int>(std::min<std::size_t>(marker.spheres.size(), kSpheres))),
+      misfit_(misfit) {}
 
 Eigen::Vector3d RimRefiner::centre_in_view(const Eigen::Isometry3d& T, int view, int sphere) const {
   const Eigen::Vector3d c = T * marker_.spheres[sphere].centre_marker_m;
@@ -337,6 +338,7 @@ bool RimRefiner::refine(const cv::Mat& left_labels, const cv::Mat& right_labels,
       const Matrix7 cov = sigma_px * sigma_px * A.ldlt().solve(Matrix7::Identity());
       result.covariance = cov.topLeftCorner<6, 6>();
       result.measured =
+          misfit_ == Misfit::measured &&
           measured_covariance(edges, final_sil, J, r0, w, white_px, A, result.covariance_measured);
     }
     *fit = result;

@@ -30,15 +30,20 @@ struct RimFit {
   // harmonic), these components' variances measured over the silhouettes seen and carried through
   // the fit (a sandwich, A^-1 M A^-1). A rim off in radius or centre widens it; white noise along
   // a rim averages out of it. Set (`measured`) when kMinMeasuredSilhouettes rims had
-  // kMinVisibleRays inliers each. A sphere's centre moved alike in both views leaves no misfit, so
-  // that is credited kSharedCentreBiasPx.
+  // kMinVisibleRays inliers each, by a refiner built to measure it. A sphere's centre moved alike
+  // in both views leaves no misfit, so that is credited kSharedCentreBiasPx.
   bool measured = false;
   Eigen::Matrix<double, 6, 6> covariance_measured = Eigen::Matrix<double, 6, 6>::Zero();
 };
 
 class RimRefiner {
  public:
-  RimRefiner(const hal::StereoRig& rig, const hal::MarkerModel& marker);
+  // Whether a fit also measures RimFit::covariance_measured (a pass over its rim points and a
+  // sandwich), which only the measured error bound reads.
+  enum class Misfit { ignored, measured };
+
+  RimRefiner(const hal::StereoRig& rig, const hal::MarkerModel& marker,
+             Misfit misfit = Misfit::ignored);
 
   // Refines T_cl_marker in place on the label images (CV_8UC1 of ColourClass, each its camera's
   // size). False (pose unchanged) when too few rim points agree or the fit does not converge.
@@ -127,6 +132,7 @@ class RimRefiner {
   hal::StereoRig rig_;
   hal::MarkerModel marker_;
   int spheres_ = 0;
+  Misfit misfit_ = Misfit::ignored;
 };
 
 }  // namespace rovctl::estimator

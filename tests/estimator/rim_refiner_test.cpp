@@ -52,7 +52,7 @@ void hide_left_half(const hal::CameraModel& camera, const Eigen::Vector3d& centr
 
 TEST(RimRefiner, ConvergesOnTheTruthFromAFewMillimetresOff) {
   TestScene scene;
-  RimRefiner refiner(scene.rig, scene.marker);
+  RimRefiner refiner(scene.rig, scene.marker, RimRefiner::Misfit::measured);
   std::mt19937_64 rng(11);
   for (int i = 0; i < 8; ++i) {
     const Eigen::Isometry3d truth = random_pose(rng, 0.4, 1.2);
@@ -133,7 +133,7 @@ void shrink_colour(hal::ColourClass colour, int px, cv::Mat& labels) {
 // where such a bias is expected).
 TEST(RimRefiner, ARimOffInRadiusWidensTheMeasuredCovariance) {
   TestScene scene;
-  RimRefiner refiner(scene.rig, scene.marker);
+  RimRefiner refiner(scene.rig, scene.marker, RimRefiner::Misfit::measured);
   std::mt19937_64 rng(5);
   int covered = 0, model_covered = 0;
   for (int i = 0; i < 6; ++i) {
@@ -175,7 +175,7 @@ void move_colour(hal::ColourClass colour, int dx, int dy, cv::Mat& labels) {
 // fit, for every sphere and both directions.
 TEST(RimRefiner, ASphereMovedAlikeInBothViewsLeansThePoseWithinTheMeasuredBound) {
   TestScene scene;
-  RimRefiner refiner(scene.rig, scene.marker);
+  RimRefiner refiner(scene.rig, scene.marker, RimRefiner::Misfit::measured);
   std::mt19937_64 rng(9);
   for (int i = 0; i < 4; ++i) {
     const Eigen::Isometry3d truth = random_pose(rng, 0.6, 1.4);
@@ -199,6 +199,27 @@ TEST(RimRefiner, ASphereMovedAlikeInBothViewsLeansThePoseWithinTheMeasuredBound)
       }
     }
   }
+}
+
+// Only the measured bound reads the misfit's covariance; a refiner not built to measure it fits the
+// same pose, with the same counted covariance, and says it has not measured.
+TEST(RimRefiner, ARefinerNotBuiltToMeasureTheMisfitFitsTheSamePoseAndSaysSo) {
+  TestScene scene;
+  RimRefiner measuring(scene.rig, scene.marker, RimRefiner::Misfit::measured);
+  RimRefiner counting(scene.rig, scene.marker);
+  std::mt19937_64 rng(3);
+  const Eigen::Isometry3d truth = random_pose(rng, 0.6, 1.0);
+  scene.render(truth, 7);
+  const Labels l = segment(scene);
+  Eigen::Isometry3d T_measuring = nudged(truth), T_counting = nudged(truth);
+  RimFit measured, counted;
+  ASSERT_TRUE(measuring.refine(l.left, l.right, T_measuring, &measured));
+  ASSERT_TRUE(counting.refine(l.left, l.right, T_counting, &counted));
+  EXPECT_TRUE(measured.measured);
+  EXPECT_FALSE(counted.measured);
+  EXPECT_TRUE(counted.covariance_measured.isZero());
+  EXPECT_TRUE(T_counting.isApprox(T_measuring, 1e-12));
+  EXPECT_TRUE(counted.covariance.isApprox(measured.covariance, 1e-12));
 }
 
 TEST(RimRefiner, NothingToSeeLeavesThePoseAlone) {
